@@ -1,0 +1,46 @@
+#include <perideal/quadrature/ball_box_intersection.h>
+#include <perideal/quadrature/exact_partial_volume.h>
+
+namespace PeriDEAL
+{
+  namespace Quadrature
+  {
+    template <int dim>
+    double
+    ExactPartialVolume<dim>::weight(const Point<dim>       &node,
+                                    const double            horizon,
+                                    const BoundingBox<dim> &cell) const
+    {
+      const double cell_measure = cell.volume();
+      if (cell_measure <= 0)
+        return 0;
+      return std::min(1.0,
+                      ball_box_intersection_measure(node, horizon, cell) /
+                        cell_measure);
+    }
+
+
+
+    template <int dim>
+    void
+    ExactPartialVolume<dim>::declare_parameters(ParameterHandler &)
+    {}
+
+
+
+    template class ExactPartialVolume<2>;
+    template class ExactPartialVolume<3>;
+  } // namespace Quadrature
+} // namespace PeriDEAL
+
+PERIDEAL_REGISTER_PARTIAL_VOLUME(
+  PeriDEAL::Quadrature::ExactPartialVolume,
+  2,
+  "exact",
+  "Exact partial area of disc and cell in closed form (any rectangle).")
+PERIDEAL_REGISTER_PARTIAL_VOLUME(
+  PeriDEAL::Quadrature::ExactPartialVolume,
+  3,
+  "exact",
+  "Exact partial volume of ball and cell in closed form (any box), "
+  "accurate to about 1e-16 times the cell volume.")
