@@ -83,7 +83,7 @@ namespace
     bool    dim_given = false;
     for (int i = 1; i < argc; ++i)
       {
-        const std::string arg = argv[i];
+        const std::string arg   = argv[i];
         auto              value = [&]() -> std::string {
           if (i + 1 >= argc)
             fail("option " + arg + " needs a value");
@@ -175,14 +175,18 @@ namespace
     const double exact_measure =
       (dim == 2 ? M_PI * o.m_ratio * o.m_ratio :
                   4. / 3. * M_PI * std::pow(o.m_ratio, 3));
-    std::printf("PeriDEAL quadrature weights, %dD, m-ratio %g\n", dim,
+    std::printf("PeriDEAL quadrature weights, %dD, m-ratio %g\n",
+                dim,
                 o.m_ratio);
     std::printf("neighbourhood %s 1 + sum(beta) against %s = %.15g\n\n",
                 dim == 2 ? "area" : "volume",
                 dim == 2 ? "pi m^2" : "4/3 pi m^3",
                 exact_measure);
-    std::printf("%-24s %10s %14s %14s\n", "algorithm", "neighbours",
-                "rel. error", "time [ms]");
+    std::printf("%-24s %10s %14s %14s\n",
+                "algorithm",
+                "neighbours",
+                "rel. error",
+                "time [ms]");
     std::vector<std::pair<std::string, int>> runs;
     for (const auto &name : PartialVolumeRegistry<dim>::names())
       if (name == "quasi-analytical")
@@ -195,16 +199,15 @@ namespace
         const auto algorithm = create_algorithm<dim>(name, order);
         const auto start     = std::chrono::steady_clock::now();
         const UniformGridWeights<dim> table(*algorithm, o.m_ratio);
-        const double                  seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                        start)
-            .count();
+        const double                  seconds = std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count();
         const std::string label =
           order > 0 ? name + " (N=" + std::to_string(order) + ")" : name;
-        std::printf("%-24s %10zu %14.3e %14.3f\n", label.c_str(),
+        std::printf("%-24s %10zu %14.3e %14.3f\n",
+                    label.c_str(),
                     table.neighbours().size(),
-                    std::abs(table.neighbourhood_measure() / exact_measure -
-                             1),
+                    std::abs(table.neighbourhood_measure() / exact_measure - 1),
                     seconds * 1e3);
       }
   }

@@ -16,19 +16,26 @@ namespace PeriDEAL
       using real = long double;
 
       /**
-       * Area of the part of the disc of radius sqrt(@p r2) around the origin
-       * with x >= a and y >= b, for a, b >= 0 and D = r2 - a^2 - b^2 given
-       * (passed in so that callers can supply it accurately).
+       * Area of the part of the disc of radius r = sqrt(@p r2) around the
+       * origin with x >= a and y >= b, for a, b >= 0 and
+       * D = r^2 - a^2 - b^2 > 0 given (passed in so that callers can supply
+       * it accurately).
        *
-       * A = r^2 psi / 2 - a Y / 2 - b X / 2 + a b, with X = sqrt(r^2 - b^2),
-       * Y = sqrt(r^2 - a^2) and psi the angle between (a, Y) and (X, b);
-       * sin(psi) r^2 = X Y - a b = r^2 D / (X Y + a b) avoids cancellation.
+       * With X = sqrt(r^2 - b^2), Y = sqrt(r^2 - a^2) the region is the right
+       * triangle (a, b), (X, b), (a, Y) plus the circular segment over its
+       * hypotenuse, whose arc subtends the angle psi between (a, Y) and
+       * (X, b):
+       *   A = (X - a)(Y - b)/2 + r^2 (psi - sin psi)/2.
+       * Both terms are non-negative, and X - a = D/(X + a),
+       * Y - b = D/(Y + b), r^2 sin psi = X Y - a b = r^2 D/(X Y + a b) are
+       * free of cancellation, so the area has a small relative error even
+       * for tiny corners far from the centre.
        */
       struct PlanarCorner
       {
         real area;
-        real psi;       // arc angle
-        real sin_psi_r2; // r^2 sin(psi), without cancellation
+        real psi;        // arc angle
+        real sin_psi_r2; // r^2 sin(psi)
         real cos_psi_r2; // r^2 cos(psi)
       };
 
@@ -40,12 +47,10 @@ namespace PeriDEAL
         const real sin_psi_r2 = r2 * D / (X * Y + a * b);
         const real cos_psi_r2 = a * X + b * Y;
         const real psi        = std::atan2(sin_psi_r2, cos_psi_r2);
-        return {r2 * psi / 2 - (a * Y + b * X) / 2 + a * b,
-                psi,
-                sin_psi_r2,
-                cos_psi_r2};
+        const real triangle   = (D / (X + a)) * (D / (Y + b)) / 2;
+        const real segment    = (r2 * psi - sin_psi_r2) / 2;
+        return {triangle + segment, psi, sin_psi_r2, cos_psi_r2};
       }
-
 
 
       real
@@ -56,7 +61,6 @@ namespace PeriDEAL
           return 0;
         return planar_corner(R * R, a, b, D).area;
       }
-
 
 
       /**
@@ -72,10 +76,9 @@ namespace PeriDEAL
       lens_solid_angle(const PlanarCorner &arc, const real k, const real R)
       {
         return arc.psi * (R - k) / R -
-               2 * std::atan2(arc.sin_psi_r2,
-                              (R + k) * (R + k) + arc.cos_psi_r2);
+               2 *
+                 std::atan2(arc.sin_psi_r2, (R + k) * (R + k) + arc.cos_psi_r2);
       }
-
 
 
       /**
@@ -124,16 +127,14 @@ namespace PeriDEAL
         const real geodesic_triangle =
           2 * std::atan2(triple, R2 * R + R * dots);
 
-        const real patch_solid_angle = geodesic_triangle +
-                                       lens_solid_angle(on_a, a, R) +
-                                       lens_solid_angle(on_b, b, R) +
-                                       lens_solid_angle(on_c, c, R);
+        const real patch_solid_angle =
+          geodesic_triangle + lens_solid_angle(on_a, a, R) +
+          lens_solid_angle(on_b, b, R) + lens_solid_angle(on_c, c, R);
 
         return (R2 * R * patch_solid_angle - a * on_a.area - b * on_b.area -
                 c * on_c.area) /
                3;
       }
-
 
 
       template <int dim>
@@ -146,7 +147,6 @@ namespace PeriDEAL
         else
           return corner_volume(corner[0], corner[1], corner[2], R);
       }
-
 
 
       /**
@@ -193,7 +193,6 @@ namespace PeriDEAL
     } // namespace
 
 
-
     template <int dim>
     double
     ball_corner_measure(const Point<dim> &corner, const double radius)
@@ -207,7 +206,6 @@ namespace PeriDEAL
       return static_cast<double>(
         first_orthant_corner_measure<dim>(a, real(radius)));
     }
-
 
 
     template <int dim>
@@ -264,7 +262,6 @@ namespace PeriDEAL
         }
       return static_cast<double>(measure);
     }
-
 
 
     template double

@@ -20,12 +20,10 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     void
     ExactPartialVolume<dim>::declare_parameters(ParameterHandler &)
     {}
-
 
 
     template class ExactPartialVolume<2>;

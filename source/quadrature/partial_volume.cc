@@ -15,12 +15,10 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     void
     PartialVolume<dim>::parse_parameters(ParameterHandler &)
     {}
-
 
 
     template <int dim>
@@ -29,7 +27,6 @@ namespace PeriDEAL
     {
       return "partial-volume algorithm (" + std::to_string(dim) + "D)";
     }
-
 
 
     template <int dim>
@@ -44,7 +41,6 @@ namespace PeriDEAL
         }
       return BoundingBox<dim>(std::make_pair(lower, upper));
     }
-
 
 
     template class PartialVolume<2>;

@@ -34,7 +34,6 @@ namespace PeriDEAL
     } // namespace
 
 
-
     template <int dim>
     UniformGridWeights<dim>::UniformGridWeights(
       const PartialVolume<dim> &algorithm,
@@ -55,7 +54,6 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     double
     UniformGridWeights<dim>::m_ratio() const
@@ -64,14 +62,12 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     int
     UniformGridWeights<dim>::max_offset() const
     {
       return bound;
     }
-
 
 
     template <int dim>
@@ -86,7 +82,6 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     std::array<int, dim>
     UniformGridWeights<dim>::canonical(const std::array<int, dim> &offset)
@@ -99,7 +94,6 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     double
     UniformGridWeights<dim>::beta(const std::array<int, dim> &offset) const
@@ -109,7 +103,6 @@ namespace PeriDEAL
         return 0;
       return wedge_table[index(c)];
     }
-
 
 
     template <int dim>
@@ -127,7 +120,6 @@ namespace PeriDEAL
       });
       return result;
     }
-
 
 
     template <int dim>
@@ -160,7 +152,6 @@ namespace PeriDEAL
     }
 
 
-
     template <int dim>
     double
     UniformGridWeights<dim>::neighbourhood_measure() const
@@ -170,7 +161,6 @@ namespace PeriDEAL
         sum += entry.beta;
       return static_cast<double>(sum);
     }
-
 
 
     template class UniformGridWeights<2>;

@@ -21,8 +21,8 @@ namespace PeriDEAL
                  std::string,
                  std::string,
                  std::string,
-                 << "Invalid value '" << arg2 << "' for the parameter '"
-                 << arg1 << "': " << arg3 << '.');
+                 << "Invalid value '" << arg2 << "' for the parameter '" << arg1
+                 << "': " << arg3 << '.');
 
   /**
    * A name (of a model, algorithm, boundary treatment, ...) that is not

@@ -33,7 +33,8 @@ namespace PeriDEAL
   {
   public:
     /// Declares the parameters of one registered class.
-    using ParameterDeclaration = std::function<void(dealii::ParameterHandler &)>;
+    using ParameterDeclaration =
+      std::function<void(dealii::ParameterHandler &)>;
 
     /// Creates an object of one registered class with default parameters.
     using Factory = std::function<std::unique_ptr<Interface>()>;
@@ -102,7 +103,6 @@ namespace PeriDEAL
   };
 
 
-
   template <class Interface>
   std::map<std::string, typename PluginRegistry<Interface>::Entry> &
   PluginRegistry<Interface>::entries()
@@ -112,7 +112,6 @@ namespace PeriDEAL
     static std::map<std::string, Entry> registered;
     return registered;
   }
-
 
 
   template <class Interface>
@@ -131,7 +130,6 @@ namespace PeriDEAL
   }
 
 
-
   template <class Interface>
   std::vector<std::string>
   PluginRegistry<Interface>::names()
@@ -141,7 +139,6 @@ namespace PeriDEAL
       result.push_back(entry.first);
     return result;
   }
-
 
 
   template <class Interface>
@@ -155,14 +152,12 @@ namespace PeriDEAL
   }
 
 
-
   template <class Interface>
   bool
   PluginRegistry<Interface>::is_registered(const std::string &name)
   {
     return entries().count(name) > 0;
   }
-
 
 
   template <class Interface>
@@ -178,14 +173,12 @@ namespace PeriDEAL
   }
 
 
-
   template <class Interface>
   const std::string &
   PluginRegistry<Interface>::description(const std::string &name)
   {
     return find(name).description;
   }
-
 
 
   template <class Interface>
@@ -201,14 +194,12 @@ namespace PeriDEAL
   }
 
 
-
   template <class Interface>
   std::unique_ptr<Interface>
   PluginRegistry<Interface>::create(const std::string &name)
   {
     return find(name).factory();
   }
-
 
 
   template <class Interface>
@@ -233,19 +224,17 @@ namespace PeriDEAL
  * `static void declare_parameters(dealii::ParameterHandler &)` and a default
  * constructor.
  */
-#define PERIDEAL_REGISTER_CLASS(Interface, Class, name, description)      \
-  namespace                                                               \
-  {                                                                       \
-    const bool PERIDEAL_CONCAT(perideal_registered_, __LINE__) =          \
-      ::PeriDEAL::PluginRegistry<Interface>::register_class(              \
-        name,                                                             \
-        description,                                                      \
-        [](dealii::ParameterHandler &prm) {                               \
-          Class::declare_parameters(prm);                                 \
-        },                                                                \
-        []() -> std::unique_ptr<Interface> {                              \
-          return std::make_unique<Class>();                               \
-        });                                                               \
+#define PERIDEAL_REGISTER_CLASS(Interface, Class, name, description)           \
+  namespace                                                                    \
+  {                                                                            \
+    const bool PERIDEAL_CONCAT(perideal_registered_, __LINE__) =               \
+      ::PeriDEAL::PluginRegistry<Interface>::register_class(                   \
+        name,                                                                  \
+        description,                                                           \
+        [](dealii::ParameterHandler &prm) { Class::declare_parameters(prm); }, \
+        []() -> std::unique_ptr<Interface> {                                   \
+          return std::make_unique<Class>();                                    \
+        });                                                                    \
   }
 
 #endif
