@@ -1,0 +1,195 @@
+#include <deal.II/base/mpi.h>
+
+#include <perideal/discretization/neighbor_list.h>
+#include <perideal/quadrature/uniform_grid_weights.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <unordered_map>
+
+namespace PeriDEAL
+{
+  namespace Discretization
+  {
+    namespace
+    {
+      template <int dim>
+      struct BucketHash
+      {
+        std::size_t
+        operator()(const std::array<int, dim> &key) const
+        {
+          std::size_t h = 0;
+          for (const int k : key)
+            h = h * 1000003u ^ static_cast<std::size_t>(k + (1 << 20));
+          return h;
+        }
+      };
+    } // namespace
+
+
+    template <int dim>
+    void
+    NeighborList<dim>::reinit(const NodeSet<dim>                   &nodes,
+                              const double                          horizon,
+                              const Quadrature::PartialVolume<dim> &algorithm,
+                              const bool with_ghost_lists)
+    {
+      const unsigned int n    = nodes.size();
+      const MPI_Comm     comm = nodes.get_communicator();
+
+      // Uniform grid: every cell a cube of one side h, on every process.
+      double min_side = std::numeric_limits<double>::max(), max_side = 0;
+      for (const auto &node : nodes.nodes())
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double side = node.cell.side_length(d);
+            min_side          = std::min(min_side, side);
+            max_side          = std::max(max_side, side);
+          }
+      min_side       = Utilities::MPI::min(min_side, comm);
+      max_side       = Utilities::MPI::max(max_side, comm);
+      uniform        = (max_side - min_side <= 1e-12 * max_side);
+      const double h = max_side;
+
+      std::unique_ptr<Quadrature::UniformGridWeights<dim>> table;
+      if (uniform)
+        table =
+          std::make_unique<Quadrature::UniformGridWeights<dim>>(algorithm,
+                                                                horizon / h);
+
+      // Bucket grid: a neighbour's centre lies within horizon + half a cell
+      // diameter, so the adjacent buckets hold every candidate.
+      const double reach  = horizon + 0.5 * nodes.max_cell_diameter();
+      const double bucket = reach;
+      auto         key_of = [&](const Point<dim> &p) {
+        std::array<int, dim> key;
+        for (unsigned int d = 0; d < dim; ++d)
+          key[d] = static_cast<int>(std::floor(p[d] / bucket));
+        return key;
+      };
+      std::unordered_map<std::array<int, dim>,
+                         std::vector<unsigned int>,
+                         BucketHash<dim>>
+        buckets;
+      for (unsigned int j = 0; j < n; ++j)
+        buckets[key_of(nodes[j].location)].push_back(j);
+
+      auto weight_of = [&](const unsigned int i, const unsigned int j) {
+        const Node<dim> &a = nodes[i], &b = nodes[j];
+        if (uniform)
+          {
+            std::array<int, dim> offset;
+            bool                 on_lattice = true;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double o = (b.location[d] - a.location[d]) / h;
+                offset[d]      = static_cast<int>(std::lround(o));
+                on_lattice     = on_lattice && std::abs(o - offset[d]) < 1e-9;
+              }
+            if (on_lattice)
+              return table->beta(offset);
+          }
+        return algorithm.weight(a.location, horizon, b.cell);
+      };
+
+      listed.assign(n, false);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        listed[i] = true;
+
+      std::vector<std::vector<Bond>> lists(n);
+      auto                           build = [&](const unsigned int i) {
+        const Point<dim>          &x = nodes[i].location;
+        const std::array<int, dim> key = key_of(x);
+        std::array<int, dim>       k;
+        const unsigned int         n_adjacent = std::pow(3, dim);
+        for (unsigned int a = 0; a < n_adjacent; ++a)
+          {
+            unsigned int code = a;
+            for (unsigned int d = 0; d < dim; ++d, code /= 3)
+              k[d] = key[d] + static_cast<int>(code % 3) - 1;
+            const auto bucket_nodes = buckets.find(k);
+            if (bucket_nodes == buckets.end())
+              continue;
+            for (const unsigned int j : bucket_nodes->second)
+              if (j != i &&
+                  x.distance_square(nodes[j].location) < reach * reach)
+                {
+                  const double beta = weight_of(i, j);
+                  if (beta > 0)
+                    lists[i].push_back({j, beta * nodes[j].volume()});
+                }
+          }
+        // Deterministic order, independent of bucket layout and partition:
+        // by the neighbour's first DoF index.
+        std::sort(lists[i].begin(),
+                  lists[i].end(),
+                  [&](const Bond &p, const Bond &q) {
+                    return nodes[p.neighbor].dofs[0] <
+                           nodes[q.neighbor].dofs[0];
+                  });
+      };
+
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        build(i);
+      owned_bonds = 0;
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        owned_bonds += lists[i].size();
+      if (with_ghost_lists)
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          for (const Bond &bond : lists[i])
+            if (!listed[bond.neighbor])
+              {
+                listed[bond.neighbor] = true;
+                build(bond.neighbor);
+              }
+
+      offsets.assign(n + 1, 0);
+      for (unsigned int i = 0; i < n; ++i)
+        offsets[i + 1] = offsets[i] + lists[i].size();
+      all_bonds.clear();
+      all_bonds.reserve(offsets[n]);
+      for (const auto &list : lists)
+        all_bonds.insert(all_bonds.end(), list.begin(), list.end());
+    }
+
+
+    template <int dim>
+    bool
+    NeighborList<dim>::has_list(const unsigned int i) const
+    {
+      return listed[i];
+    }
+
+
+    template <int dim>
+    ArrayView<const Bond>
+    NeighborList<dim>::bonds(const unsigned int i) const
+    {
+      Assert(listed[i], ExcMessage("This node has no neighbour list."));
+      return make_array_view(all_bonds.data() + offsets[i],
+                             all_bonds.data() + offsets[i + 1]);
+    }
+
+
+    template <int dim>
+    std::size_t
+    NeighborList<dim>::n_owned_bonds() const
+    {
+      return owned_bonds;
+    }
+
+
+    template <int dim>
+    bool
+    NeighborList<dim>::used_uniform_grid_table() const
+    {
+      return uniform;
+    }
+
+
+    template class NeighborList<2>;
+    template class NeighborList<3>;
+  } // namespace Discretization
+} // namespace PeriDEAL

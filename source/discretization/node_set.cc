@@ -1,0 +1,225 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/fe/fe.h>
+
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <perideal/discretization/node_set.h>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Discretization
+  {
+    namespace
+    {
+      // Squared Euclidean distance between two boxes (0 if they overlap).
+      template <int dim>
+      double
+      box_distance_squared(const BoundingBox<dim> &a, const BoundingBox<dim> &b)
+      {
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double gap = std::max({0.,
+                                         a.lower_bound(d) - b.upper_bound(d),
+                                         b.lower_bound(d) - a.upper_bound(d)});
+            d2 += gap * gap;
+          }
+        return d2;
+      }
+
+      // The cell's bounding box, after checking that the cell is that box:
+      // every vertex a corner of the box, and the same measure.
+      template <int dim>
+      BoundingBox<dim>
+      box_of_cell(const typename DoFHandler<dim>::active_cell_iterator &cell)
+      {
+        const BoundingBox<dim> box       = cell->bounding_box();
+        const double           tolerance = 1e-10 * cell->diameter();
+        bool                   is_box    = true;
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double x = cell->vertex(v)[d];
+              is_box =
+                is_box && (std::abs(x - box.lower_bound(d)) <= tolerance ||
+                           std::abs(x - box.upper_bound(d)) <= tolerance);
+            }
+        is_box = is_box && std::abs(cell->measure() - box.volume()) <=
+                             1e-10 * box.volume();
+        if (!is_box)
+          {
+            std::ostringstream where;
+            where << "cell " << cell->id() << " with vertices";
+            for (const unsigned int v : cell->vertex_indices())
+              where << " (" << cell->vertex(v) << ")";
+            AssertThrow(false,
+                        ExcMessage(
+                          "PeriDEAL places PD nodes at the centres of cells "
+                          "that are axis-aligned boxes (partial volumes are "
+                          "computed for boxes), but the mesh contains a " +
+                          where.str() +
+                          ". Use a Cartesian mesh: every cell a box with "
+                          "faces normal to the coordinate axes."));
+          }
+        return box;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    NodeSet<dim>::reinit(const DoFHandler<dim> &dof_handler,
+                         const double           coupling_range)
+    {
+      const auto    &fe   = dof_handler.get_fe();
+      const MPI_Comm comm = dof_handler.get_communicator();
+      communicator        = comm;
+      const auto rank     = Utilities::MPI::this_mpi_process(comm);
+      AssertThrow(fe.n_dofs_per_cell() == dim && fe.n_components() == dim &&
+                    fe.degree == 0,
+                  ExcMessage("NodeSet needs a DoFHandler with "
+                             "FESystem(FE_DGQ(0), dim): one node per cell."));
+
+      all_nodes.clear();
+      double                               local_max_diameter = 0;
+      std::vector<types::global_dof_index> dof_indices(dim);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            Node<dim> node;
+            node.cell     = box_of_cell<dim>(cell);
+            node.location = node.cell.center();
+            cell->get_dof_indices(dof_indices);
+            for (unsigned int i = 0; i < dim; ++i)
+              node.dofs[fe.system_to_component_index(i).first] = dof_indices[i];
+            node.owner = rank;
+            all_nodes.push_back(node);
+            local_max_diameter = std::max(local_max_diameter, cell->diameter());
+          }
+      n_owned_nodes = all_nodes.size();
+      max_diameter  = Utilities::MPI::max(local_max_diameter, comm);
+
+      if (Utilities::MPI::n_mpi_processes(comm) > 1)
+        {
+          // A node j is needed on process r if its cell comes within the
+          // coupling range of a node owned by r; r's nodes lie in r's boxes.
+          const std::vector<BoundingBox<dim>> local_boxes =
+            GridTools::compute_mesh_predicate_bounding_box(
+              dof_handler.get_triangulation(),
+              IteratorFilters::LocallyOwnedCell(),
+              /*refinement_level*/ 1,
+              /*allow_merge*/ true,
+              /*max_boxes*/ 8);
+          const auto all_boxes = Utilities::MPI::all_gather(comm, local_boxes);
+          const double range2  = coupling_range * coupling_range;
+
+          std::map<unsigned int, std::vector<Node<dim>>> to_send;
+          for (unsigned int r = 0; r < all_boxes.size(); ++r)
+            if (r != rank)
+              for (unsigned int i = 0; i < n_owned_nodes; ++i)
+                for (const auto &box : all_boxes[r])
+                  if (box_distance_squared(box, all_nodes[i].cell) <= range2)
+                    {
+                      to_send[r].push_back(all_nodes[i]);
+                      break;
+                    }
+          const auto received = Utilities::MPI::some_to_some(comm, to_send);
+
+          std::vector<Node<dim>> ghosts;
+          for (const auto &[sender, nodes] : received)
+            ghosts.insert(ghosts.end(), nodes.begin(), nodes.end());
+          // A deterministic order, independent of the partition's history.
+          std::sort(ghosts.begin(),
+                    ghosts.end(),
+                    [](const auto &a, const auto &b) {
+                      return a.dofs[0] < b.dofs[0];
+                    });
+          all_nodes.insert(all_nodes.end(), ghosts.begin(), ghosts.end());
+        }
+
+      relevant = IndexSet(dof_handler.n_dofs());
+      std::vector<types::global_dof_index> indices;
+      indices.reserve(dim * all_nodes.size());
+      for (const auto &node : all_nodes)
+        indices.insert(indices.end(), node.dofs.begin(), node.dofs.end());
+      std::sort(indices.begin(), indices.end());
+      relevant.add_indices(indices.begin(), indices.end());
+      relevant.compress();
+    }
+
+
+    template <int dim>
+    unsigned int
+    NodeSet<dim>::n_owned() const
+    {
+      return n_owned_nodes;
+    }
+
+
+    template <int dim>
+    unsigned int
+    NodeSet<dim>::n_ghost() const
+    {
+      return all_nodes.size() - n_owned_nodes;
+    }
+
+
+    template <int dim>
+    unsigned int
+    NodeSet<dim>::size() const
+    {
+      return all_nodes.size();
+    }
+
+
+    template <int dim>
+    const Node<dim> &
+    NodeSet<dim>::operator[](const unsigned int i) const
+    {
+      AssertIndexRange(i, all_nodes.size());
+      return all_nodes[i];
+    }
+
+
+    template <int dim>
+    const std::vector<Node<dim>> &
+    NodeSet<dim>::nodes() const
+    {
+      return all_nodes;
+    }
+
+
+    template <int dim>
+    double
+    NodeSet<dim>::max_cell_diameter() const
+    {
+      return max_diameter;
+    }
+
+
+    template <int dim>
+    IndexSet
+    NodeSet<dim>::relevant_dofs() const
+    {
+      return relevant;
+    }
+
+
+    template <int dim>
+    MPI_Comm
+    NodeSet<dim>::get_communicator() const
+    {
+      return communicator;
+    }
+
+
+    template class NodeSet<2>;
+    template class NodeSet<3>;
+  } // namespace Discretization
+} // namespace PeriDEAL
