@@ -1,7 +1,10 @@
 #include <perideal/quadrature/ball_box_intersection.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace PeriDEAL
 {
@@ -39,15 +42,23 @@ namespace PeriDEAL
         real cos_psi_r2; // r^2 cos(psi)
       };
 
+      /// X = sqrt(r^2 - b^2), Y = sqrt(r^2 - a^2), X - a = D/(X + a) and
+      /// Y - b = D/(Y + b) are passed in: in 3D they are shared between the
+      /// faces.
       PlanarCorner
-      planar_corner(const real r2, const real a, const real b, const real D)
+      planar_corner(const real r2,
+                    const real a,
+                    const real b,
+                    const real D,
+                    const real X,
+                    const real Y,
+                    const real X_minus_a,
+                    const real Y_minus_b)
       {
-        const real X          = std::sqrt(r2 - b * b);
-        const real Y          = std::sqrt(r2 - a * a);
         const real sin_psi_r2 = r2 * D / (X * Y + a * b);
         const real cos_psi_r2 = a * X + b * Y;
         const real psi        = std::atan2(sin_psi_r2, cos_psi_r2);
-        const real triangle   = (D / (X + a)) * (D / (Y + b)) / 2;
+        const real triangle   = X_minus_a * Y_minus_b / 2;
         const real segment    = (r2 * psi - sin_psi_r2) / 2;
         return {triangle + segment, psi, sin_psi_r2, cos_psi_r2};
       }
@@ -59,25 +70,10 @@ namespace PeriDEAL
         const real D = R * R - a * a - b * b;
         if (!(D > 0))
           return 0;
-        return planar_corner(R * R, a, b, D).area;
-      }
-
-
-      /**
-       * Solid angle of the lens between the small-circle arc at height k
-       * (arc angle psi in its own plane) of the sphere of radius R and the
-       * great-circle arc through the same end points:
-       *   psi (R - k)/R - 2 atan(kappa sin psi / (1 + kappa cos psi)),
-       * kappa = (R - k)/(R + k), written with r^2 sin psi and r^2 cos psi,
-       * r^2 = R^2 - k^2, as
-       *   psi (R - k)/R - 2 atan2(r^2 sin psi, (R + k)^2 + r^2 cos psi).
-       */
-      real
-      lens_solid_angle(const PlanarCorner &arc, const real k, const real R)
-      {
-        return arc.psi * (R - k) / R -
-               2 *
-                 std::atan2(arc.sin_psi_r2, (R + k) * (R + k) + arc.cos_psi_r2);
+        const real X = std::sqrt(R * R - b * b);
+        const real Y = std::sqrt(R * R - a * a);
+        return planar_corner(R * R, a, b, D, X, Y, D / (X + a), D / (Y + b))
+          .area;
       }
 
 
@@ -85,15 +81,13 @@ namespace PeriDEAL
        * Volume of the part of the ball of radius R around the origin with
        * x >= a, y >= b, z >= c, for a, b, c >= 0.
        *
-       * Divergence theorem with the position vector, which vanishes in the
-       * normal direction on the three planes only through the factor of
-       * their distance:
-       *   V = (R A_T - a A_a - b A_b - c A_c) / 3,
-       * A_T the area of the spherical patch T (the part of the sphere in the
+       * Divergence theorem with the position vector:
+       *   V = (R |T| - a A_a - b A_b - c A_c) / 3,
+       * |T| the area of the spherical patch T (the part of the sphere in the
        * corner region) and A_k the planar corner areas on the three cut
        * planes. T is the geodesic triangle through its three vertices plus
-       * three lenses, each cut off by a small circle; all four solid angles
-       * are computed from quantities free of cancellation.
+       * three lenses cut off by small circles; the solid angles come from
+       * quantities free of cancellation (doc/partial-volumes.md, Sect. 1.3).
        */
       real
       corner_volume(const real a, const real b, const real c, const real R)
@@ -103,33 +97,56 @@ namespace PeriDEAL
         if (!(D > 0))
           return 0;
 
-        // The three vertices of T: where the edges from the corner parallel
-        // to the axes leave the ball.
+        // The vertices of T, Px = (X, b, c), Py = (a, Y, c), Pz = (a, b, Z):
+        // where the edges from the corner parallel to the axes leave the ball.
         const real X = std::sqrt(R2 - b * b - c * c);
         const real Y = std::sqrt(R2 - a * a - c * c);
         const real Z = std::sqrt(R2 - a * a - b * b);
 
-        const PlanarCorner on_a = planar_corner(R2 - a * a, b, c, D);
-        const PlanarCorner on_b = planar_corner(R2 - b * b, a, c, D);
-        const PlanarCorner on_c = planar_corner(R2 - c * c, a, b, D);
+        // The planar corners on x = a (in-plane corner (b, c), extents Y and
+        // Z), on y = b ((a, c); X, Z) and on z = c ((a, b); X, Y).
+        const real         Xa = D / (X + a);
+        const real         Yb = D / (Y + b);
+        const real         Zc = D / (Z + c);
+        const PlanarCorner on_a =
+          planar_corner(R2 - a * a, b, c, D, Y, Z, Yb, Zc);
+        const PlanarCorner on_b =
+          planar_corner(R2 - b * b, a, c, D, X, Z, Xa, Zc);
+        const PlanarCorner on_c =
+          planar_corner(R2 - c * c, a, b, D, X, Y, Xa, Yb);
 
-        // Geodesic triangle (Px, Py, Pz) with Px = (X, b, c), Py = (a, Y, c),
-        // Pz = (a, b, Z): van Oosterom-Strackee,
-        //   tan(Omega/2) = Px.(Py x Pz) / (R^3 + R (Px.Py + Py.Pz + Pz.Px)),
-        // with the triple product written through the edge vectors, whose
-        // components X - a = D/(X + a) etc. are free of cancellation.
-        const real Xa     = D / (X + a);
-        const real Yb     = D / (Y + b);
-        const real Zc     = D / (Z + c);
+        // Solid angle of T = geodesic triangle + three lenses:
+        //   Omega_g = 2 atan2(Px.(Py x Pz), R^3 + R(Px.Py + Py.Pz + Pz.Px))
+        //     (van Oosterom-Strackee; the triple product through the edge
+        //     vectors, X - a = D/(X + a) etc.),
+        //   L_k = psi_k (R - k)/R - 2 atan2(r_k^2 sin psi_k,
+        //                                   (R + k)^2 + r_k^2 cos psi_k).
+        // The four arctangents are summed as the argument of one complex
+        // product, which saves three extended-precision atan2 calls.
         const real triple = X * Yb * Zc + b * Xa * Zc + c * Xa * Yb;
         const real dots   = (X * a + b * Y + c * c) + (a * a + Y * b + c * Z) +
                           (X * a + b * b + c * Z);
-        const real geodesic_triangle =
-          2 * std::atan2(triple, R2 * R + R * dots);
+        real re = R2 * R + R * dots, im = triple;
+        for (const auto &[arc, k] : {std::make_pair(&on_a, a),
+                                     std::make_pair(&on_b, b),
+                                     std::make_pair(&on_c, c)})
+          {
+            // Multiply by the conjugate of ((R + k)^2 + r^2 cos psi) +
+            // i r^2 sin psi, i.e. subtract its argument.
+            const real q      = (R + k) * (R + k) + arc->cos_psi_r2;
+            const real s      = arc->sin_psi_r2;
+            const real new_re = re * q + im * s;
+            im                = im * q - re * s;
+            re                = new_re;
+          }
+        // The exact sum of the four angles lies in (-3 pi/2, pi/2].
+        real angle = std::atan2(im, re);
+        if (angle > real(0.75) * real(M_PI))
+          angle -= 2 * real(M_PI);
 
         const real patch_solid_angle =
-          geodesic_triangle + lens_solid_angle(on_a, a, R) +
-          lens_solid_angle(on_b, b, R) + lens_solid_angle(on_c, c, R);
+          2 * angle +
+          (on_a.psi * (R - a) + on_b.psi * (R - b) + on_c.psi * (R - c)) / R;
 
         return (R2 * R * patch_solid_angle - a * on_a.area - b * on_b.area -
                 c * on_c.area) /
@@ -137,11 +154,32 @@ namespace PeriDEAL
       }
 
 
+      /// Sort 2 or 3 coordinates ascending (a sorting network, inlined).
+      template <int dim>
+      inline void
+      sort_coordinates(std::array<real, dim> &x)
+      {
+        auto order = [&](const unsigned int i, const unsigned int j) {
+          if (x[j] < x[i])
+            std::swap(x[i], x[j]);
+        };
+        order(0, 1);
+        if constexpr (dim == 3)
+          {
+            order(1, 2);
+            order(0, 1);
+          }
+      }
+
+
       template <int dim>
       real
-      first_orthant_corner_measure(const std::array<real, dim> &corner,
-                                   const real                   R)
+      first_orthant_corner_measure(std::array<real, dim> corner, const real R)
       {
+        // The corner measure is symmetric in the coordinates: evaluating it
+        // on sorted coordinates makes the result exactly symmetric, and lets
+        // callers memoize it by sorted corner.
+        sort_coordinates<dim>(corner);
         if constexpr (dim == 2)
           return corner_area(corner[0], corner[1], R);
         else
@@ -154,11 +192,12 @@ namespace PeriDEAL
        * the box [lower, upper], all coordinates >= 0: inclusion-exclusion
        * over the box corners.
        */
-      template <int dim>
+      template <int dim, typename CornerMeasure>
       real
       first_orthant_box_measure(const std::array<real, dim> &lower,
                                 const std::array<real, dim> &upper,
-                                const real                   R)
+                                const real                   R,
+                                const CornerMeasure         &corner_measure)
       {
         real nearest2 = 0, farthest2 = 0, box_measure = 1;
         for (unsigned int d = 0; d < dim; ++d)
@@ -185,7 +224,7 @@ namespace PeriDEAL
                 }
               else
                 corner[d] = lower[d];
-            sum += sign * first_orthant_corner_measure<dim>(corner, R);
+            sum += sign * corner_measure(corner);
           }
         // The exact value lies in [0, box_measure]; clip round-off.
         return std::min(std::max(sum, real(0)), box_measure);
@@ -208,59 +247,195 @@ namespace PeriDEAL
     }
 
 
+    namespace
+    {
+      template <int dim, typename CornerMeasure>
+      double
+      intersection_measure(const Point<dim>       &centre,
+                           const double            radius,
+                           const BoundingBox<dim> &box,
+                           const CornerMeasure    &corner_measure)
+      {
+        Assert(radius >= 0, ExcMessage("The radius must be non-negative."));
+
+        // Cells entirely inside or outside the ball, decided with a safe
+        // margin in double precision: most cells of a grid, and the cheap
+        // ones.
+        {
+          double nearest2 = 0, farthest2 = 0, box_measure = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double lo   = box.lower_bound(d) - centre[d];
+              const double hi   = box.upper_bound(d) - centre[d];
+              const double near = (lo > 0 ? lo : (hi < 0 ? -hi : 0.));
+              const double far  = std::max(-lo, hi);
+              nearest2 += near * near;
+              farthest2 += far * far;
+              box_measure *= hi - lo;
+            }
+          const double R2 = radius * radius;
+          if (nearest2 > R2 * (1 + 1e-10) + 1e-300)
+            return 0;
+          if (farthest2 < R2 * (1 - 1e-10))
+            return box_measure;
+        }
+
+        // Split every side at the centre's coordinate and reflect the pieces
+        // into the first orthant; the ball is symmetric under reflections.
+        std::array<std::array<std::array<real, 2>, 2>, dim> pieces;
+        std::array<unsigned int, dim>                       n_pieces;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const real lo = real(box.lower_bound(d)) - real(centre[d]);
+            const real hi = real(box.upper_bound(d)) - real(centre[d]);
+            if (lo >= 0)
+              {
+                pieces[d][0] = {{lo, hi}};
+                n_pieces[d]  = 1;
+              }
+            else if (hi <= 0)
+              {
+                pieces[d][0] = {{-hi, -lo}};
+                n_pieces[d]  = 1;
+              }
+            else
+              {
+                pieces[d][0] = {{0, -lo}};
+                pieces[d][1] = {{0, hi}};
+                n_pieces[d]  = 2;
+              }
+          }
+
+        unsigned int n_total = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          n_total *= n_pieces[d];
+
+        real measure = 0;
+        for (unsigned int p = 0; p < n_total; ++p)
+          {
+            std::array<real, dim> lower, upper;
+            unsigned int          index = p;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const auto &piece = pieces[d][index % n_pieces[d]];
+                index /= n_pieces[d];
+                lower[d] = piece[0];
+                upper[d] = piece[1];
+              }
+            measure += first_orthant_box_measure<dim>(lower,
+                                                      upper,
+                                                      radius,
+                                                      corner_measure);
+          }
+        return static_cast<double>(measure);
+      }
+    } // namespace
+
+
     template <int dim>
     double
     ball_box_intersection_measure(const Point<dim>       &centre,
                                   const double            radius,
                                   const BoundingBox<dim> &box)
     {
-      Assert(radius >= 0, ExcMessage("The radius must be non-negative."));
+      return intersection_measure<dim>(
+        centre,
+        radius,
+        box,
+        [radius](const std::array<real, dim> &corner) {
+          return first_orthant_corner_measure<dim>(corner, radius);
+        });
+    }
 
-      // Split every side at the centre's coordinate and reflect the pieces
-      // into the first orthant; the ball is symmetric under reflections.
-      std::array<std::array<std::array<real, 2>, 2>, dim> pieces;
-      std::array<unsigned int, dim>                       n_pieces;
-      for (unsigned int d = 0; d < dim; ++d)
+
+    template <int dim>
+    std::vector<double>
+    unit_cell_intersection_measures(
+      const std::vector<std::array<int, dim>> &offsets,
+      const double                             radius)
+    {
+      const real R  = radius;
+      const real R2 = R * R;
+
+      // Corner measures by corner, the corner given by its coordinates in
+      // half units (exact integers), sorted and packed into one key.
+      std::unordered_map<std::uint64_t, real> corner_measures;
+      corner_measures.reserve(offsets.size());
+      auto corner_measure = [&](std::array<int, dim> twice) -> real {
+        std::uint64_t norm2 = 0;
+        for (const int t : twice)
+          norm2 += static_cast<std::uint64_t>(t) * t;
+        if (norm2 >= 4 * R2)
+          return 0;
+        if (twice[1] < twice[0])
+          std::swap(twice[0], twice[1]);
+        if constexpr (dim == 3)
+          {
+            if (twice[2] < twice[1])
+              std::swap(twice[1], twice[2]);
+            if (twice[1] < twice[0])
+              std::swap(twice[0], twice[1]);
+          }
+        std::uint64_t key = 0;
+        for (const int t : twice)
+          key = (key << 21) | static_cast<std::uint64_t>(t);
+        const auto [entry, is_new] = corner_measures.try_emplace(key, 0);
+        if (is_new)
+          {
+            std::array<real, dim> corner;
+            for (unsigned int d = 0; d < dim; ++d)
+              corner[d] = real(twice[d]) / 2;
+            entry->second = first_orthant_corner_measure<dim>(corner, R);
+          }
+        return entry->second;
+      };
+
+      std::vector<double> measures;
+      measures.reserve(offsets.size());
+      for (const auto &offset : offsets)
         {
-          const real lo = real(box.lower_bound(d)) - real(centre[d]);
-          const real hi = real(box.upper_bound(d)) - real(centre[d]);
-          if (lo >= 0)
-            {
-              pieces[d][0] = {{lo, hi}};
-              n_pieces[d]  = 1;
-            }
-          else if (hi <= 0)
-            {
-              pieces[d][0] = {{-hi, -lo}};
-              n_pieces[d]  = 1;
-            }
-          else
-            {
-              pieces[d][0] = {{0, -lo}};
-              pieces[d][1] = {{0, hi}};
-              n_pieces[d]  = 2;
-            }
-        }
-
-      unsigned int n_total = 1;
-      for (unsigned int d = 0; d < dim; ++d)
-        n_total *= n_pieces[d];
-
-      real measure = 0;
-      for (unsigned int p = 0; p < n_total; ++p)
-        {
-          std::array<real, dim> lower, upper;
-          unsigned int          index = p;
+          // The cell reflected into the first orthant: [2|o| - 1, 2|o| + 1]
+          // in half units, or, for o = 0, twice the piece [0, 1].
+          std::array<int, dim> lower, upper;
+          real                 multiplicity = 1;
+          std::uint64_t        nearest2 = 0, farthest2 = 0;
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const auto &piece = pieces[d][index % n_pieces[d]];
-              index /= n_pieces[d];
-              lower[d] = piece[0];
-              upper[d] = piece[1];
+              const int o = std::abs(offset[d]);
+              lower[d]    = (o == 0 ? 0 : 2 * o - 1);
+              upper[d]    = (o == 0 ? 1 : 2 * o + 1);
+              if (o == 0)
+                multiplicity *= 2;
+              nearest2 += static_cast<std::uint64_t>(lower[d]) * lower[d];
+              farthest2 += static_cast<std::uint64_t>(2 * o + 1) * (2 * o + 1);
             }
-          measure += first_orthant_box_measure<dim>(lower, upper, radius);
+          if (nearest2 >= 4 * R2)
+            measures.push_back(0);
+          else if (farthest2 <= 4 * R2)
+            measures.push_back(1);
+          else
+            {
+              real sum = 0;
+              for (unsigned int vertex = 0; vertex < (1u << dim); ++vertex)
+                {
+                  std::array<int, dim> corner;
+                  int                  sign = 1;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (vertex & (1u << d))
+                      {
+                        corner[d] = upper[d];
+                        sign      = -sign;
+                      }
+                    else
+                      corner[d] = lower[d];
+                  sum += sign * corner_measure(corner);
+                }
+              const real piece = real(1) / multiplicity;
+              measures.push_back(static_cast<double>(
+                multiplicity * std::min(std::max(sum, real(0)), piece)));
+            }
         }
-      return static_cast<double>(measure);
+      return measures;
     }
 
 
@@ -276,5 +451,11 @@ namespace PeriDEAL
     ball_box_intersection_measure(const Point<3> &,
                                   const double,
                                   const BoundingBox<3> &);
+    template std::vector<double>
+    unit_cell_intersection_measures<2>(const std::vector<std::array<int, 2>> &,
+                                       const double);
+    template std::vector<double>
+    unit_cell_intersection_measures<3>(const std::vector<std::array<int, 3>> &,
+                                       const double);
   } // namespace Quadrature
 } // namespace PeriDEAL

@@ -1,6 +1,9 @@
 #include <perideal/quadrature/ball_box_intersection.h>
 #include <perideal/quadrature/exact_partial_volume.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace PeriDEAL
 {
   namespace Quadrature
@@ -17,6 +20,19 @@ namespace PeriDEAL
       return std::min(1.0,
                       ball_box_intersection_measure(node, horizon, cell) /
                         cell_measure);
+    }
+
+
+    template <int dim>
+    std::vector<double>
+    ExactPartialVolume<dim>::uniform_grid_weights(
+      const std::vector<std::array<int, dim>> &offsets,
+      const double                             m_ratio) const
+    {
+      // Unit cells: the measure is the coefficient.
+      const std::vector<double> betas =
+        unit_cell_intersection_measures<dim>(offsets, m_ratio);
+      return betas;
     }
 
 

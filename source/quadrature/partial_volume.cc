@@ -16,6 +16,20 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<double>
+    PartialVolume<dim>::uniform_grid_weights(
+      const std::vector<std::array<int, dim>> &offsets,
+      const double                             m_ratio) const
+    {
+      std::vector<double> betas;
+      betas.reserve(offsets.size());
+      for (const auto &offset : offsets)
+        betas.push_back(uniform_grid_weight(offset, m_ratio));
+      return betas;
+    }
+
+
+    template <int dim>
     void
     PartialVolume<dim>::parse_parameters(ParameterHandler &)
     {}

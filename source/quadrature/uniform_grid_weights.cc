@@ -47,10 +47,15 @@ namespace PeriDEAL
                                   "must be a finite number > 0"));
       bound = static_cast<int>(std::ceil(m_ratio + 0.5));
       wedge_table.assign(std::pow(bound + 1, dim), 0.);
+      std::vector<std::array<int, dim>> offsets;
       for_each_wedge_offset<dim>(bound, [&](const std::array<int, dim> &o) {
         if (o[dim - 1] != 0)
-          wedge_table[index(o)] = algorithm.uniform_grid_weight(o, m_ratio);
+          offsets.push_back(o);
       });
+      const std::vector<double> betas =
+        algorithm.uniform_grid_weights(offsets, m_ratio);
+      for (unsigned int i = 0; i < offsets.size(); ++i)
+        wedge_table[index(offsets[i])] = betas[i];
     }
 
 

@@ -4,6 +4,9 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/point.h>
 
+#include <array>
+#include <vector>
+
 namespace PeriDEAL
 {
   namespace Quadrature
@@ -37,6 +40,21 @@ namespace PeriDEAL
     ball_box_intersection_measure(const Point<dim>       &centre,
                                   const double            radius,
                                   const BoundingBox<dim> &box);
+
+    /**
+     * ball_box_intersection_measure() for the unit cells of a uniform grid:
+     * the measures of the ball of radius @p radius around the origin
+     * intersected with the unit cells centred at the integer @p offsets.
+     * The same closed form, organised for a grid: each corner measure (the
+     * building block of the closed form) is computed once and shared by the
+     * up to 2^dim cells that have the corner in common, and cells entirely
+     * inside or outside the ball are decided exactly in integer arithmetic.
+     */
+    template <int dim>
+    std::vector<double>
+    unit_cell_intersection_measures(
+      const std::vector<std::array<int, dim>> &offsets,
+      const double                             radius);
 
     /**
      * The corner measure \f$|B(0,R)\cap\{x\ge a, y\ge b[, z\ge c]\}|\f$

@@ -25,6 +25,15 @@ namespace PeriDEAL
              const double            horizon,
              const BoundingBox<dim> &cell) const override;
 
+      /**
+       * Shares the corner measures between cells
+       * (unit_cell_intersection_measures()):
+       * same values as weight(), several times faster per cell.
+       */
+      std::vector<double>
+      uniform_grid_weights(const std::vector<std::array<int, dim>> &offsets,
+                           const double m_ratio) const override;
+
       /// No parameters.
       static void
       declare_parameters(ParameterHandler &prm);

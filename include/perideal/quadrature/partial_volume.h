@@ -9,6 +9,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace PeriDEAL
 {
@@ -65,6 +66,16 @@ namespace PeriDEAL
       virtual double
       uniform_grid_weight(const std::array<int, dim> &offset,
                           const double                m_ratio) const;
+
+      /**
+       * uniform_grid_weight() for many offsets at once: the coefficients of
+       * the cells centred at @p offsets, in that order. The default
+       * implementation calls uniform_grid_weight() for each; algorithms that
+       * can share work between neighbouring cells override it.
+       */
+      virtual std::vector<double>
+      uniform_grid_weights(const std::vector<std::array<int, dim>> &offsets,
+                           const double m_ratio) const;
 
       /**
        * Read this algorithm's parameters from the subsection it declared.
