@@ -1,0 +1,138 @@
+#ifndef perideal_models_model_h
+#define perideal_models_model_h
+
+#include <perideal/base/plugin_registry.h>
+
+#include <string>
+
+namespace PeriDEAL
+{
+  namespace Models
+  {
+    using namespace dealii;
+
+    /**
+     * A linear(ised) ordinary peridynamic material model. In the small
+     * displacement setting, with bond \f$\xi = x_j - x_i\f$, \f$r=|\xi|\f$,
+     * \f$n = \xi/r\f$, extension \f$e_{ij} = n\cdot(u_j - u_i)\f$, weighted
+     * volume and dilatation
+     * \f[
+     *   m_i = \sum_j \omega_{ij} r_{ij}^2 w_{ij},\qquad
+     *   \theta_i = \frac{d}{m_i}\sum_j \omega_{ij} r_{ij} e_{ij} w_{ij}
+     * \f]
+     * (\f$d\f$ the dimension, \f$w_{ij} = \beta_{ij} V_j\f$ the quadrature
+     * weight), a model defines the scalar force state of bond ij at node i as
+     * \f[
+     *   t_{ij} = a_i(r_{ij})\,\theta_i + b_i(r_{ij})\,e_{ij},
+     * \f]
+     * and the internal force density is
+     * \f$ f_i = \sum_j (t_{ij} + t_{ji})\, n_{ij}\, w_{ij}\f$
+     * (Scabbia et al. 2022, Eq. 20: equilibrium is \f$-f_i = b_i\f$).
+     *
+     * Models register themselves with PERIDEAL_REGISTER_MODEL and read their
+     * material constants from their own parameter subsection.
+     */
+    template <int dim>
+    class Model
+    {
+    public:
+      virtual ~Model() = default;
+
+      /// Read the material constants.
+      virtual void
+      parse_parameters(ParameterHandler &prm) = 0;
+
+      /**
+       * Whether forces depend on the neighbours' weighted volumes and
+       * dilatations, so that a node couples to nodes up to two horizons away.
+       */
+      virtual bool
+      is_state_based() const = 0;
+
+      /// The influence function at bond length @p r for horizon @p horizon.
+      virtual double
+      influence(const double r, const double horizon) const = 0;
+
+      /**
+       * \f$a_i(r)\f$: the factor of the dilatation in the force state, for a
+       * node with weighted volume @p weighted_volume.
+       */
+      virtual double
+      dilatation_coefficient(const double weighted_volume,
+                             const double r,
+                             const double horizon) const = 0;
+
+      /// \f$b_i(r)\f$: the factor of the bond extension in the force state.
+      virtual double
+      extension_coefficient(const double weighted_volume,
+                            const double r,
+                            const double horizon) const = 0;
+
+      /// The bulk modulus K (3D) of the material, for reports.
+      virtual double
+      bulk_modulus() const = 0;
+
+      /// The shear modulus of the material.
+      virtual double
+      shear_modulus() const = 0;
+
+      static std::string
+      family_name();
+    };
+
+    template <int dim>
+    using ModelRegistry = PluginRegistry<Model<dim>>;
+
+    /**
+     * Isotropic linear elastic constants as a user gives them: Young's
+     * modulus and Poisson's ratio, or bulk and shear modulus. Declares and
+     * parses the entries "Elastic constants", "Young's modulus",
+     * "Poisson's ratio", "Bulk modulus", "Shear modulus" and, for 2D,
+     * "Plane model" (plane strain or plane stress).
+     */
+    struct ElasticConstants
+    {
+      /// Three-dimensional bulk modulus K.
+      double bulk = 0;
+      /// Shear modulus mu.
+      double shear = 0;
+      /// In 2D: plane stress (true) or plane strain (false).
+      bool plane_stress = false;
+
+      double
+      youngs_modulus() const;
+
+      double
+      poissons_ratio() const;
+
+      /**
+       * The bulk modulus of the 2D model: $\kappa = K + \mu/3$ in plane
+       * strain, $9K\mu/(3K + 4\mu)$ in plane stress.
+       */
+      double
+      planar_bulk_modulus() const;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace Models
+
+  extern template class PluginRegistry<Models::Model<2>>;
+  extern template class PluginRegistry<Models::Model<3>>;
+} // namespace PeriDEAL
+
+/// Register the model @p Class (a template over dim) under @p name.
+#define PERIDEAL_REGISTER_MODEL(Class, name, description) \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::Model<2>,   \
+                          Class<2>,                       \
+                          name,                           \
+                          description)                    \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::Model<3>,   \
+                          Class<3>,                       \
+                          name,                           \
+                          description)
+
+#endif

@@ -1,0 +1,132 @@
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/models/influence_function.h>
+#include <perideal/models/model.h>
+
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Models
+  {
+    /**
+     * The bond-based linear microelastic model, the linearised prototype
+     * microelastic brittle (PMB) material without failure
+     * (hybrid-collocation paper, Eqs. 12-17): the pairwise force density is
+     * \f$ c\,\omega(|\xi|)\, e_{ij}/|\xi|\, n_{ij}\f$, i.e.
+     * \f$ t_{ij} = \tfrac12 c\,\omega\, e_{ij} / r_{ij}\f$.
+     *
+     * The micromodulus follows from equating energy densities under
+     * homogeneous strain:
+     * \f$ c = 15\mu / (2\pi\delta^4 M_3)\f$ in 3D and
+     * \f$ c = 8\mu / (\pi\delta^3 M_2)\f$ in 2D, with
+     * \f$M_k = \int_0^1 \omega(s) s^k ds\f$ (constant influence, plane
+     * stress: \f$c = 9E/(\pi\delta^3)\f$). A central pair force fixes
+     * Poisson's ratio: 1/4 in 3D and plane strain, 1/3 in plane stress.
+     * Another Poisson's ratio is an error, not a silent change.
+     */
+    template <int dim>
+    class BondBased : public Model<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        ElasticConstants::declare_parameters(prm);
+        prm.declare_entry("Influence function",
+                          "constant",
+                          Patterns::Selection(
+                            InfluenceFunctionRegistry::pattern_string()),
+                          "The influence function omega(|xi|/delta).");
+      }
+
+      void
+      parse_parameters(ParameterHandler &prm) override
+      {
+        constants.parse_parameters(prm);
+        omega =
+          InfluenceFunctionRegistry::create(prm.get("Influence function"));
+        const double required =
+          (dim == 2 && constants.plane_stress) ? 1. / 3 : 1. / 4;
+        const double nu = constants.poissons_ratio();
+        if (std::abs(nu - required) > 1e-4)
+          {
+            std::ostringstream value, fix;
+            value << nu;
+            const std::string exact = required > 0.3 ? "1/3" : "1/4";
+            fix << "a bond-based model has Poisson's ratio " << exact
+                << (dim == 3 ? " in 3D" :
+                               (constants.plane_stress ? " in plane stress" :
+                                                         " in plane strain"))
+                << "; set \"Poisson's ratio = " << std::setprecision(16)
+                << required
+                << "\" or use the \"linear peridynamic solid\" model";
+            AssertThrow(false,
+                        ExcInvalidInput("Poisson's ratio",
+                                        value.str(),
+                                        fix.str()));
+          }
+        moment = omega->moment(dim);
+      }
+
+      bool
+      is_state_based() const override
+      {
+        return false;
+      }
+
+      double
+      influence(const double r, const double horizon) const override
+      {
+        return omega->value(r / horizon);
+      }
+
+      double
+      dilatation_coefficient(const double,
+                             const double,
+                             const double) const override
+      {
+        return 0;
+      }
+
+      double
+      extension_coefficient(const double,
+                            const double r,
+                            const double horizon) const override
+      {
+        const double mu = constants.shear;
+        const double c =
+          dim == 3 ? 15 * mu / (2 * M_PI * std::pow(horizon, 4) * moment) :
+                     8 * mu / (M_PI * std::pow(horizon, 3) * moment);
+        return 0.5 * c * influence(r, horizon) / r;
+      }
+
+      double
+      bulk_modulus() const override
+      {
+        return constants.bulk;
+      }
+
+      double
+      shear_modulus() const override
+      {
+        return constants.shear;
+      }
+
+    private:
+      ElasticConstants                   constants;
+      std::unique_ptr<InfluenceFunction> omega;
+      double                             moment = 0;
+    };
+  } // namespace Models
+} // namespace PeriDEAL
+
+PERIDEAL_REGISTER_MODEL(
+  PeriDEAL::Models::BondBased,
+  "bond-based",
+  "Bond-based linear microelastic model (linearised PMB); Poisson's ratio "
+  "fixed at 1/4 (3D, plane strain) or 1/3 (plane stress).")

@@ -1,0 +1,114 @@
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/models/influence_function.h>
+#include <perideal/models/model.h>
+
+#include <memory>
+
+namespace PeriDEAL
+{
+  namespace Models
+  {
+    /**
+     * The ordinary state-based linear peridynamic solid (LPS; Silling et al.
+     * 2007), linearised for small displacements (Scabbia et al. 2022,
+     * Eqs. 18-20):
+     * \f[
+     *   t_{ij} = \frac{c_K\,\omega_{ij} r_{ij}}{m_i}\theta_i
+     *          + \frac{c_\mu\,\omega_{ij}}{m_i} e_{ij},
+     * \f]
+     * with \f$c_K = 3K - 5\mu\f$, \f$c_\mu = 15\mu\f$ in 3D and
+     * \f$c_K = 2\kappa - 4\mu\f$, \f$c_\mu = 8\mu\f$ in 2D, \f$\kappa\f$ the
+     * planar bulk modulus (plane strain: \f$K + \mu/3\f$, plane stress:
+     * \f$9K\mu/(3K+4\mu)\f$). The constants follow from equating the PD
+     * energy density \f$\frac{\kappa}{2}\theta^2 + \frac{\alpha}{2}\int
+     * \omega (e^d)^2\f$ with the classical one under homogeneous strain; the
+     * derivation, for 2D as well, is in doc/models.md.
+     */
+    template <int dim>
+    class LinearPeridynamicSolid : public Model<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        ElasticConstants::declare_parameters(prm);
+        prm.declare_entry("Influence function",
+                          "gaussian",
+                          Patterns::Selection(
+                            InfluenceFunctionRegistry::pattern_string()),
+                          "The influence function omega(|xi|/delta).");
+      }
+
+      void
+      parse_parameters(ParameterHandler &prm) override
+      {
+        constants.parse_parameters(prm);
+        omega =
+          InfluenceFunctionRegistry::create(prm.get("Influence function"));
+        if constexpr (dim == 3)
+          {
+            c_bulk  = 3 * constants.bulk - 5 * constants.shear;
+            c_shear = 15 * constants.shear;
+          }
+        else
+          {
+            c_bulk  = 2 * constants.planar_bulk_modulus() - 4 * constants.shear;
+            c_shear = 8 * constants.shear;
+          }
+      }
+
+      bool
+      is_state_based() const override
+      {
+        return true;
+      }
+
+      double
+      influence(const double r, const double horizon) const override
+      {
+        return omega->value(r / horizon);
+      }
+
+      double
+      dilatation_coefficient(const double m,
+                             const double r,
+                             const double horizon) const override
+      {
+        return c_bulk * influence(r, horizon) * r / m;
+      }
+
+      double
+      extension_coefficient(const double m,
+                            const double r,
+                            const double horizon) const override
+      {
+        return c_shear * influence(r, horizon) / m;
+      }
+
+      double
+      bulk_modulus() const override
+      {
+        return constants.bulk;
+      }
+
+      double
+      shear_modulus() const override
+      {
+        return constants.shear;
+      }
+
+    private:
+      ElasticConstants                   constants;
+      std::unique_ptr<InfluenceFunction> omega;
+      double                             c_bulk  = 0;
+      double                             c_shear = 0;
+    };
+  } // namespace Models
+} // namespace PeriDEAL
+
+PERIDEAL_REGISTER_MODEL(
+  PeriDEAL::Models::LinearPeridynamicSolid,
+  "linear peridynamic solid",
+  "Ordinary state-based linear peridynamic solid (LPS), any Poisson's ratio; "
+  "3D, and 2D in plane strain or plane stress.")

@@ -1,0 +1,123 @@
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/models/model.h>
+
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Models
+  {
+    template <int dim>
+    std::string
+    Model<dim>::family_name()
+    {
+      return "material model";
+    }
+
+
+    double
+    ElasticConstants::youngs_modulus() const
+    {
+      return 9 * bulk * shear / (3 * bulk + shear);
+    }
+
+
+    double
+    ElasticConstants::poissons_ratio() const
+    {
+      return (3 * bulk - 2 * shear) / (2 * (3 * bulk + shear));
+    }
+
+
+    double
+    ElasticConstants::planar_bulk_modulus() const
+    {
+      return plane_stress ? 9 * bulk * shear / (3 * bulk + 4 * shear) :
+                            bulk + shear / 3;
+    }
+
+
+    void
+    ElasticConstants::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Elastic constants",
+                        "Young's modulus and Poisson's ratio",
+                        Patterns::Selection(
+                          "Young's modulus and Poisson's ratio|"
+                          "bulk and shear modulus"),
+                        "Which pair of constants defines the material.");
+      prm.declare_entry("Young's modulus",
+                        "1e9",
+                        Patterns::Double(),
+                        "Young's modulus E (Pa), > 0.");
+      prm.declare_entry("Poisson's ratio",
+                        "0.25",
+                        Patterns::Double(),
+                        "Poisson's ratio nu, -1 < nu < 0.5 (nu <= 0.5 for "
+                        "plane stress).");
+      prm.declare_entry("Bulk modulus",
+                        "6.6666666666666667e8",
+                        Patterns::Double(),
+                        "Bulk modulus K (Pa), > 0.");
+      prm.declare_entry("Shear modulus",
+                        "4e8",
+                        Patterns::Double(),
+                        "Shear modulus mu (Pa), > 0.");
+      prm.declare_entry("Plane model",
+                        "plane strain",
+                        Patterns::Selection("plane strain|plane stress"),
+                        "Two-dimensional problems only: plane strain or "
+                        "plane stress (per unit thickness).");
+    }
+
+
+    void
+    ElasticConstants::parse_parameters(ParameterHandler &prm)
+    {
+      auto str = [](const double x) {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+      };
+      plane_stress = prm.get("Plane model") == "plane stress";
+      if (prm.get("Elastic constants") == "bulk and shear modulus")
+        {
+          bulk  = prm.get_double("Bulk modulus");
+          shear = prm.get_double("Shear modulus");
+          AssertThrow(bulk > 0,
+                      ExcInvalidInput("Bulk modulus",
+                                      str(bulk),
+                                      "give a bulk modulus > 0"));
+          AssertThrow(shear > 0,
+                      ExcInvalidInput("Shear modulus",
+                                      str(shear),
+                                      "give a shear modulus > 0"));
+        }
+      else
+        {
+          const double E  = prm.get_double("Young's modulus");
+          const double nu = prm.get_double("Poisson's ratio");
+          AssertThrow(E > 0,
+                      ExcInvalidInput("Young's modulus",
+                                      str(E),
+                                      "give a Young's modulus > 0"));
+          AssertThrow(nu > -1 && nu < 0.5,
+                      ExcInvalidInput("Poisson's ratio",
+                                      str(nu),
+                                      "an isotropic solid needs "
+                                      "-1 < nu < 0.5"));
+          bulk  = E / (3 * (1 - 2 * nu));
+          shear = E / (2 * (1 + nu));
+        }
+    }
+
+
+    template class Model<2>;
+    template class Model<3>;
+  } // namespace Models
+
+  template class PluginRegistry<Models::Model<2>>;
+  template class PluginRegistry<Models::Model<3>>;
+} // namespace PeriDEAL
