@@ -119,34 +119,49 @@ namespace PeriDEAL
         //   Omega_g = 2 atan2(Px.(Py x Pz), R^3 + R(Px.Py + Py.Pz + Pz.Px))
         //     (van Oosterom-Strackee; the triple product through the edge
         //     vectors, X - a = D/(X + a) etc.),
-        //   L_k = psi_k (R - k)/R - 2 atan2(r_k^2 sin psi_k,
-        //                                   (R + k)^2 + r_k^2 cos psi_k).
-        // The four arctangents are summed as the argument of one complex
-        // product, which saves three extended-precision atan2 calls.
+        //   L_k = psi_k (R - k)/R - 2 atan(kappa sin psi/(1 + kappa cos psi))
+        //       = 2 atan((k/R) tan(psi_k/2)) - (k/R) psi_k,
+        // kappa = (R - k)/(R + k). The two forms of the lens are the same
+        // function; the first is free of cancellation for k near R, the
+        // second for k small (it vanishes exactly for k = 0), so each lens
+        // uses the form that suits it: a small lens must come out small in
+        // absolute terms, because its error is multiplied by R^3.
+        // The four arctangents (each in [0, pi/4]) are summed as the
+        // argument of one complex product, saving three extended-precision
+        // atan2 calls.
         const real triple = X * Yb * Zc + b * Xa * Zc + c * Xa * Yb;
         const real dots   = (X * a + b * Y + c * c) + (a * a + Y * b + c * Z) +
                           (X * a + b * b + c * Z);
         real re = R2 * R + R * dots, im = triple;
+        real linear_part = 0; // the psi terms of the lenses
         for (const auto &[arc, k] : {std::make_pair(&on_a, a),
                                      std::make_pair(&on_b, b),
                                      std::make_pair(&on_c, c)})
           {
-            // Multiply by the conjugate of ((R + k)^2 + r^2 cos psi) +
-            // i r^2 sin psi, i.e. subtract its argument.
-            const real q      = (R + k) * (R + k) + arc->cos_psi_r2;
-            const real s      = arc->sin_psi_r2;
-            const real new_re = re * q + im * s;
-            im                = im * q - re * s;
+            const real r2 = R2 - k * k;
+            real       q, s;
+            if (2 * k >= R)
+              {
+                // Subtract the argument of ((R + k)^2 + r^2 cos psi) +
+                // i r^2 sin psi.
+                q = (R + k) * (R + k) + arc->cos_psi_r2;
+                s = -arc->sin_psi_r2;
+                linear_part += arc->psi * (R - k) / R;
+              }
+            else
+              {
+                // Add the argument of R (r^2 + r^2 cos psi) + i k r^2 sin psi:
+                // tan(psi/2) = sin psi / (1 + cos psi).
+                q = R * (r2 + arc->cos_psi_r2);
+                s = k * arc->sin_psi_r2;
+                linear_part -= arc->psi * k / R;
+              }
+            const real new_re = re * q - im * s;
+            im                = im * q + re * s;
             re                = new_re;
           }
-        // The exact sum of the four angles lies in (-3 pi/2, pi/2].
-        real angle = std::atan2(im, re);
-        if (angle > real(0.75) * real(M_PI))
-          angle -= 2 * real(M_PI);
-
-        const real patch_solid_angle =
-          2 * angle +
-          (on_a.psi * (R - a) + on_b.psi * (R - b) + on_c.psi * (R - c)) / R;
+        // The exact sum of the four angles lies in [-3 pi/4, pi].
+        const real patch_solid_angle = 2 * std::atan2(im, re) + linear_part;
 
         return (R2 * R * patch_solid_angle - a * on_a.area - b * on_b.area -
                 c * on_c.area) /
