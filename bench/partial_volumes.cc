@@ -292,6 +292,43 @@ namespace
     sink = sum;
     return best;
   }
+
+  /**
+   * Nanoseconds per partial cell when the whole uniform-grid table is built
+   * (uniform_grid_weights() on every wedge offset, one call per m-ratio, as
+   * UniformGridWeights does): the total time over all m-ratios divided by
+   * the number of partial cells. Algorithms that share work between cells
+   * (exact: corner measures) profit here. Fastest of 5 blocks.
+   */
+  double
+  time_per_table_cell(
+    const PartialVolume<3> &algorithm,
+    const std::vector<std::pair<double, std::vector<std::array<int, 3>>>>
+                     &tables,
+    const std::size_t n_partial,
+    const double      min_seconds)
+  {
+    using clock = std::chrono::steady_clock;
+    double sum  = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (unsigned int block = 0; block < 5; ++block)
+      {
+        std::size_t cells   = 0;
+        double      seconds = 0;
+        const auto  start   = clock::now();
+        do
+          {
+            for (const auto &[m, offsets] : tables)
+              sum += algorithm.uniform_grid_weights(offsets, m).back();
+            cells += n_partial;
+            seconds =
+              std::chrono::duration<double>(clock::now() - start).count();
+        } while (seconds < min_seconds / 5);
+        best = std::min(best, seconds / cells * 1e9);
+      }
+    sink = sum;
+    return best;
+  }
 } // namespace
 
 int
@@ -315,6 +352,9 @@ main(int argc, char **argv)
       // the partial ones are the timing set.
       const std::vector<double> ms = o.quick ? m_grid(4, 3.) : m_grid(20, 10.);
       std::vector<Cell>         all_cells, partial_cells;
+      std::vector<std::pair<double, std::vector<std::array<int, 3>>>> tables;
+      for (const double m : ms)
+        tables.emplace_back(m, wedge_offsets(m));
       for (const double m : ms)
         for (const auto &offset : wedge_offsets(m))
           {
@@ -338,9 +378,10 @@ main(int argc, char **argv)
                   ms.size() - 1,
                   all_cells.size(),
                   partial_cells.size());
-      std::printf("%-22s %10s %13s %13s  %-28s %s\n",
+      std::printf("%-22s %10s %10s %13s %13s  %-28s %s\n",
                   "algorithm",
-                  "ns/partial",
+                  "ns/call",
+                  "ns/table",
                   "max err (ref)",
                   "max err(fine)",
                   "worst cell (ref)",
@@ -352,6 +393,7 @@ main(int argc, char **argv)
       if (!csv)
         fail("cannot write " + csv_name);
       csv << "algorithm,taylor_order,ns_per_partial_cell,"
+             "ns_per_partial_cell_in_table,"
              "max_abs_error_vs_reference,max_abs_error_vs_exact_fine_grid,"
              "n_reference_rows\n";
 
@@ -368,10 +410,15 @@ main(int argc, char **argv)
                          c);
           const double ns =
             time_per_call(*v.algorithm, partial_cells, min_seconds);
+          const double ns_table = time_per_table_cell(*v.algorithm,
+                                                      tables,
+                                                      partial_cells.size(),
+                                                      min_seconds);
 
-          std::printf("%-22s %10.1f %13.3e %13.3e  %-28s %s\n",
+          std::printf("%-22s %10.1f %10.1f %13.3e %13.3e  %-28s %s\n",
                       v.label().c_str(),
                       ns,
+                      ns_table,
                       vs_reference.value,
                       vs_exact.value,
                       vs_reference.value > 0 ? vs_reference.where().c_str() :
@@ -381,17 +428,66 @@ main(int argc, char **argv)
           char line[256];
           std::snprintf(line,
                         sizeof line,
-                        "%s,%s,%.4g,%.6e,%.6e,%zu\n",
+                        "%s,%s,%.4g,%.4g,%.6e,%.6e,%zu\n",
                         v.name.c_str(),
                         v.taylor_order > 0 ?
                           std::to_string(v.taylor_order).c_str() :
                           "",
                         ns,
+                        ns_table,
                         vs_reference.value,
                         vs_exact.value,
                         reference.size());
           csv << line;
         }
+      // Cost against size: building one table as the m-ratio grows.
+      {
+        const std::string name = o.output_dir + "/table_time_vs_m.csv";
+        std::ofstream     out(name);
+        if (!out)
+          fail("cannot write " + name);
+        out << "m,algorithm,taylor_order,n_wedge_cells,n_partial_cells,"
+               "microseconds_per_table\n";
+        const std::vector<double> sizes =
+          o.quick ?
+            std::vector<double>{2., 3.} :
+            std::vector<double>{2., 3., 5., 7.5, 10., 15., 20., 35., 50.};
+        for (const double m : sizes)
+          {
+            const std::vector<std::vector<std::array<int, 3>>> offsets{
+              wedge_offsets(m)};
+            std::size_t n_partial = 0;
+            for (const double beta :
+                 exact.algorithm->uniform_grid_weights(offsets[0], m))
+              n_partial += (beta > 0 && beta < 1);
+            for (const Variant &v : variants)
+              if (v.name != "full" &&
+                  (v.taylor_order == 0 || v.taylor_order == 4 ||
+                   v.taylor_order == 20))
+                {
+                  const double ns_per_cell =
+                    time_per_table_cell(*v.algorithm,
+                                        {{m, offsets[0]}},
+                                        n_partial,
+                                        min_seconds / 4);
+                  char line[256];
+                  std::snprintf(line,
+                                sizeof line,
+                                "%g,%s,%s,%zu,%zu,%.4g\n",
+                                m,
+                                v.name.c_str(),
+                                v.taylor_order > 0 ?
+                                  std::to_string(v.taylor_order).c_str() :
+                                  "",
+                                offsets[0].size(),
+                                n_partial,
+                                ns_per_cell * n_partial * 1e-3);
+                  out << line;
+                }
+          }
+        std::printf("\nTable time against m written: %s\n", name.c_str());
+      }
+
       std::printf("\n\"max err (fine)\" is against the exact kernel on all "
                   "wedge cells of the fine grid;\nexact's own entry there is "
                   "0 by definition. Written: %s\n",

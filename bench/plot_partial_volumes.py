@@ -93,7 +93,7 @@ def plot_benchmark(csv_path, png_path):
         for r in rows:
             key = (r["algorithm"], r["taylor_order"])
             colour, marker = STYLE.get(key, ("gray", "o"))
-            t = float(r["ns_per_partial_cell"])
+            t = float(r["ns_per_partial_cell_in_table"])
             e = float(r[column])
             y = e if e > 0 else FLOOR
             if not math.isfinite(y):
@@ -114,7 +114,7 @@ def plot_benchmark(csv_path, png_path):
                 label="max |beta - beta_ref| " + text)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("time per partial cell [ns] (uniform_grid_weight, m = 1..10)")
+    ax.set_xlabel("time per partial cell [ns] (building the uniform-grid tables, m = 1..10)")
     ax.set_ylabel("max. absolute error of beta")
     ax.set_title("3D partial-volume algorithms: accuracy vs. cost")
     ax.grid(True, which="major", alpha=0.3)
@@ -206,6 +206,32 @@ def plot_fig11(csv_path, png_path):
     plt.close(fig)
 
 
+def plot_time_vs_m(csv_path, png_path):
+    data = group(read_csv(csv_path))
+    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    for key, rows in data.items():
+        colour, marker = STYLE.get(key, ("gray", "o"))
+        m = [float(r["m"]) for r in rows]
+        t = [float(r["microseconds_per_table"]) for r in rows]
+        ax.plot(m, t, color=colour, marker=marker, label=label(*key))
+    rows = list(data.values())[0]
+    m = [float(r["m"]) for r in rows]
+    n = [float(r["n_partial_cells"]) for r in rows]
+    scale = [float(r["microseconds_per_table"]) for r in rows][-1] / n[-1]
+    ax.plot(m, [scale * x for x in n], "k:", linewidth=0.8,
+            label="proportional to the number of partial cells")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"m-ratio $\bar m$")
+    ax.set_ylabel("time to build one wedge table [µs]")
+    ax.set_title("Cost of the uniform-grid coefficients against size")
+    ax.grid(True, which="major", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png_path, dpi=120)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--benchmark-dir", default="results/partial_volumes")
@@ -217,6 +243,8 @@ def main():
     jobs = [
         (args.benchmark_dir, "partial_volumes.csv", "benchmark.png",
          plot_benchmark),
+        (args.benchmark_dir, "table_time_vs_m.csv", "time_vs_m.png",
+         plot_time_vs_m),
         (args.figures_dir, "fig10.csv", "fig10.png",
          lambda c, p: plot_fig10(c, p, 0.5)),
         (args.figures_dir, "fig10_fine.csv", "fig10_fine.png",
