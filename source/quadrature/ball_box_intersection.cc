@@ -37,6 +37,7 @@ namespace PeriDEAL
       struct PlanarCorner
       {
         real area;
+        real radius2;    // r^2 of the circle
         real psi;        // arc angle
         real sin_psi_r2; // r^2 sin(psi)
         real cos_psi_r2; // r^2 cos(psi)
@@ -60,19 +61,28 @@ namespace PeriDEAL
         const real psi        = std::atan2(sin_psi_r2, cos_psi_r2);
         const real triangle   = X_minus_a * Y_minus_b / 2;
         const real segment    = (r2 * psi - sin_psi_r2) / 2;
-        return {triangle + segment, psi, sin_psi_r2, cos_psi_r2};
+        return {triangle + segment, r2, psi, sin_psi_r2, cos_psi_r2};
       }
 
 
       real
       corner_area(const real a, const real b, const real R)
       {
-        const real D = R * R - a * a - b * b;
+        // b is the larger coordinate (sorted): R - b is exact, so D keeps
+        // its relative accuracy when the corner is close to the circle.
+        const real D = (R - b) * (R + b) - a * a;
         if (!(D > 0))
           return 0;
-        const real X = std::sqrt(R * R - b * b);
-        const real Y = std::sqrt(R * R - a * a);
-        return planar_corner(R * R, a, b, D, X, Y, D / (X + a), D / (Y + b))
+        const real X = std::sqrt(D + a * a);
+        const real Y = std::sqrt(D + b * b);
+        return planar_corner(D + a * a + b * b,
+                             a,
+                             b,
+                             D,
+                             X,
+                             Y,
+                             D / (X + a),
+                             D / (Y + b))
           .area;
       }
 
@@ -93,15 +103,19 @@ namespace PeriDEAL
       corner_volume(const real a, const real b, const real c, const real R)
       {
         const real R2 = R * R;
-        const real D  = R2 - a * a - b * b - c * c;
+        // c is the largest coordinate (sorted): R - c is exact, so D keeps
+        // its relative accuracy for corners close to the sphere near the
+        // poles; the other squares below are all formed as sums of positive
+        // terms from D.
+        const real D = (R - c) * (R + c) - a * a - b * b;
         if (!(D > 0))
           return 0;
 
         // The vertices of T, Px = (X, b, c), Py = (a, Y, c), Pz = (a, b, Z):
         // where the edges from the corner parallel to the axes leave the ball.
-        const real X = std::sqrt(R2 - b * b - c * c);
-        const real Y = std::sqrt(R2 - a * a - c * c);
-        const real Z = std::sqrt(R2 - a * a - b * b);
+        const real X = std::sqrt(D + a * a);
+        const real Y = std::sqrt(D + b * b);
+        const real Z = std::sqrt(D + c * c);
 
         // The planar corners on x = a (in-plane corner (b, c), extents Y and
         // Z), on y = b ((a, c); X, Z) and on z = c ((a, b); X, Y).
@@ -109,11 +123,11 @@ namespace PeriDEAL
         const real         Yb = D / (Y + b);
         const real         Zc = D / (Z + c);
         const PlanarCorner on_a =
-          planar_corner(R2 - a * a, b, c, D, Y, Z, Yb, Zc);
+          planar_corner(D + b * b + c * c, b, c, D, Y, Z, Yb, Zc);
         const PlanarCorner on_b =
-          planar_corner(R2 - b * b, a, c, D, X, Z, Xa, Zc);
+          planar_corner(D + a * a + c * c, a, c, D, X, Z, Xa, Zc);
         const PlanarCorner on_c =
-          planar_corner(R2 - c * c, a, b, D, X, Y, Xa, Yb);
+          planar_corner(D + a * a + b * b, a, b, D, X, Y, Xa, Yb);
 
         // Solid angle of T = geodesic triangle + three lenses:
         //   Omega_g = 2 atan2(Px.(Py x Pz), R^3 + R(Px.Py + Py.Pz + Pz.Px))
@@ -138,7 +152,7 @@ namespace PeriDEAL
                                      std::make_pair(&on_b, b),
                                      std::make_pair(&on_c, c)})
           {
-            const real r2 = R2 - k * k;
+            const real r2 = arc->radius2;
             real       q, s;
             if (2 * k >= R)
               {
