@@ -36,6 +36,19 @@ namespace PeriDEAL
               }
           }
 
+      // State-based forces of owned nodes need the weighted volume and
+      // dilatation of every neighbour: their lists must be there.
+      if (state_based)
+        for (unsigned int i = 0; i < node_set.n_owned(); ++i)
+          for (const auto &bond : lists.bonds(i))
+            AssertThrow(listed[bond.neighbor],
+                        ExcMessage("A state-based model needs neighbour "
+                                   "lists of the off-process neighbours of "
+                                   "owned nodes: build the NeighborList with "
+                                   "with_ghost_lists = true, and the NodeSet "
+                                   "with a coupling range of at least twice "
+                                   "the horizon plus two cell diameters."));
+
       offsets.assign(n + 1, 0);
       bonds.clear();
       for (unsigned int i = 0; i < n; ++i)

@@ -55,7 +55,19 @@ namespace PeriDEAL
       const std::vector<double> betas =
         algorithm.uniform_grid_weights(offsets, m_ratio);
       for (unsigned int i = 0; i < offsets.size(); ++i)
-        wedge_table[index(offsets[i])] = betas[i];
+        {
+          AssertThrow(std::isfinite(betas[i]),
+                      ExcMessage("The partial-volume algorithm returned a "
+                                 "non-finite coefficient for the offset (" +
+                                 std::to_string(offsets[i][0]) + ", " +
+                                 std::to_string(offsets[i][1]) +
+                                 (dim == 3 ?
+                                    ", " + std::to_string(offsets[i][dim - 1]) :
+                                    std::string()) +
+                                 ") at m-ratio " + std::to_string(m_ratio) +
+                                 "; use the \"exact\" algorithm."));
+          wedge_table[index(offsets[i])] = betas[i];
+        }
     }
 
 
