@@ -30,38 +30,32 @@ namespace PeriDEAL
      * Another Poisson's ratio is an error, not a silent change.
      */
     template <int dim>
-    class BondBased : public Model<dim>
+    class BondBased : public IsotropicModel<dim>
     {
     public:
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        ElasticConstants::declare_parameters(prm);
-        prm.declare_entry("Influence function",
-                          "constant",
-                          Patterns::Selection(
-                            InfluenceFunctionRegistry::pattern_string()),
-                          "The influence function omega(|xi|/delta).");
+        IsotropicModel<dim>::declare_parameters(prm, "constant");
       }
 
       void
       parse_parameters(ParameterHandler &prm) override
       {
-        constants.parse_parameters(prm);
-        omega =
-          InfluenceFunctionRegistry::create(prm.get("Influence function"));
+        IsotropicModel<dim>::parse_parameters(prm);
         const double required =
-          (dim == 2 && constants.plane_stress) ? 1. / 3 : 1. / 4;
-        const double nu = constants.poissons_ratio();
+          (dim == 2 && this->constants.plane_stress) ? 1. / 3 : 1. / 4;
+        const double nu = this->constants.poissons_ratio();
         if (std::abs(nu - required) > 1e-4)
           {
             std::ostringstream value, fix;
             value << nu;
             const std::string exact = required > 0.3 ? "1/3" : "1/4";
             fix << "a bond-based model has Poisson's ratio " << exact
-                << (dim == 3 ? " in 3D" :
-                               (constants.plane_stress ? " in plane stress" :
-                                                         " in plane strain"))
+                << (dim == 3 ?
+                      " in 3D" :
+                      (this->constants.plane_stress ? " in plane stress" :
+                                                      " in plane strain"))
                 << "; set \"Poisson's ratio = " << std::setprecision(16)
                 << required
                 << "\" or use the \"linear peridynamic solid\" model";
@@ -70,19 +64,13 @@ namespace PeriDEAL
                                         value.str(),
                                         fix.str()));
           }
-        moment = omega->moment(dim);
+        moment = this->omega->moment(dim);
       }
 
       bool
       is_state_based() const override
       {
         return false;
-      }
-
-      double
-      influence(const double r, const double horizon) const override
-      {
-        return omega->value(r / horizon);
       }
 
       double
@@ -98,29 +86,15 @@ namespace PeriDEAL
                             const double r,
                             const double horizon) const override
       {
-        const double mu = constants.shear;
+        const double mu = this->constants.shear;
         const double c =
           dim == 3 ? 15 * mu / (2 * M_PI * std::pow(horizon, 4) * moment) :
                      8 * mu / (M_PI * std::pow(horizon, 3) * moment);
-        return 0.5 * c * influence(r, horizon) / r;
-      }
-
-      double
-      bulk_modulus() const override
-      {
-        return constants.bulk;
-      }
-
-      double
-      shear_modulus() const override
-      {
-        return constants.shear;
+        return 0.5 * c * this->influence(r, horizon) / r;
       }
 
     private:
-      ElasticConstants                   constants;
-      std::unique_ptr<InfluenceFunction> omega;
-      double                             moment = 0;
+      double moment = 0;
     };
   } // namespace Models
 } // namespace PeriDEAL

@@ -26,35 +26,29 @@ namespace PeriDEAL
      * derivation, for 2D as well, is in doc/models.md.
      */
     template <int dim>
-    class LinearPeridynamicSolid : public Model<dim>
+    class LinearPeridynamicSolid : public IsotropicModel<dim>
     {
     public:
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        ElasticConstants::declare_parameters(prm);
-        prm.declare_entry("Influence function",
-                          "gaussian",
-                          Patterns::Selection(
-                            InfluenceFunctionRegistry::pattern_string()),
-                          "The influence function omega(|xi|/delta).");
+        IsotropicModel<dim>::declare_parameters(prm, "gaussian");
       }
 
       void
       parse_parameters(ParameterHandler &prm) override
       {
-        constants.parse_parameters(prm);
-        omega =
-          InfluenceFunctionRegistry::create(prm.get("Influence function"));
+        IsotropicModel<dim>::parse_parameters(prm);
         if constexpr (dim == 3)
           {
-            c_bulk  = 3 * constants.bulk - 5 * constants.shear;
-            c_shear = 15 * constants.shear;
+            c_bulk  = 3 * this->constants.bulk - 5 * this->constants.shear;
+            c_shear = 15 * this->constants.shear;
           }
         else
           {
-            c_bulk  = 2 * constants.planar_bulk_modulus() - 4 * constants.shear;
-            c_shear = 8 * constants.shear;
+            c_bulk = 2 * this->constants.planar_bulk_modulus() -
+                     4 * this->constants.shear;
+            c_shear = 8 * this->constants.shear;
           }
       }
 
@@ -65,17 +59,11 @@ namespace PeriDEAL
       }
 
       double
-      influence(const double r, const double horizon) const override
-      {
-        return omega->value(r / horizon);
-      }
-
-      double
       dilatation_coefficient(const double m,
                              const double r,
                              const double horizon) const override
       {
-        return c_bulk * influence(r, horizon) * r / m;
+        return c_bulk * this->influence(r, horizon) * r / m;
       }
 
       double
@@ -83,26 +71,12 @@ namespace PeriDEAL
                             const double r,
                             const double horizon) const override
       {
-        return c_shear * influence(r, horizon) / m;
-      }
-
-      double
-      bulk_modulus() const override
-      {
-        return constants.bulk;
-      }
-
-      double
-      shear_modulus() const override
-      {
-        return constants.shear;
+        return c_shear * this->influence(r, horizon) / m;
       }
 
     private:
-      ElasticConstants                   constants;
-      std::unique_ptr<InfluenceFunction> omega;
-      double                             c_bulk  = 0;
-      double                             c_shear = 0;
+      double c_bulk  = 0;
+      double c_shear = 0;
     };
   } // namespace Models
 } // namespace PeriDEAL

@@ -114,8 +114,58 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    void
+    IsotropicModel<dim>::declare_parameters(
+      ParameterHandler  &prm,
+      const std::string &default_influence)
+    {
+      ElasticConstants::declare_parameters(prm);
+      prm.declare_entry("Influence function",
+                        default_influence,
+                        Patterns::Selection(
+                          InfluenceFunctionRegistry::pattern_string()),
+                        "The influence function omega(|xi|/delta).");
+    }
+
+
+    template <int dim>
+    void
+    IsotropicModel<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      constants.parse_parameters(prm);
+      omega = InfluenceFunctionRegistry::create(prm.get("Influence function"));
+    }
+
+
+    template <int dim>
+    double
+    IsotropicModel<dim>::influence(const double r, const double horizon) const
+    {
+      return omega->value(r / horizon);
+    }
+
+
+    template <int dim>
+    double
+    IsotropicModel<dim>::bulk_modulus() const
+    {
+      return constants.bulk;
+    }
+
+
+    template <int dim>
+    double
+    IsotropicModel<dim>::shear_modulus() const
+    {
+      return constants.shear;
+    }
+
+
     template class Model<2>;
     template class Model<3>;
+    template class IsotropicModel<2>;
+    template class IsotropicModel<3>;
   } // namespace Models
 
   template class PluginRegistry<Models::Model<2>>;

@@ -2,6 +2,9 @@
 #define perideal_models_model_h
 
 #include <perideal/base/plugin_registry.h>
+#include <perideal/models/influence_function.h>
+
+#include <memory>
 
 #include <string>
 
@@ -117,6 +120,37 @@ namespace PeriDEAL
 
       void
       parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * What the isotropic linear elastic models share: the elastic
+     * constants (ElasticConstants) and an influence function, with their
+     * parameters, and the Model functions that only depend on them.
+     */
+    template <int dim>
+    class IsotropicModel : public Model<dim>
+    {
+    public:
+      /// Declare the elastic constants and "Influence function".
+      static void
+      declare_parameters(ParameterHandler  &prm,
+                         const std::string &default_influence);
+
+      void
+      parse_parameters(ParameterHandler &prm) override;
+
+      double
+      influence(const double r, const double horizon) const override;
+
+      double
+      bulk_modulus() const override;
+
+      double
+      shear_modulus() const override;
+
+    protected:
+      ElasticConstants                   constants;
+      std::unique_ptr<InfluenceFunction> omega;
     };
   } // namespace Models
 
