@@ -184,109 +184,228 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LinearPeridynamicOperator<dim>::assemble(
-      TrilinosWrappers::SparseMatrix &matrix) const
+    LinearPeridynamicOperator<dim>::assemble_with(
+      TrilinosWrappers::SparseMatrix  &matrix,
+      const AffineConstraints<double> *constraints,
+      TrilinosWrappers::MPI::Vector   *rhs) const
     {
       const auto        &node_set = *nodes;
       const unsigned int n        = node_set.size();
+
+      // Rows of constrained DoFs keep a diagonal entry; columns of
+      // constrained DoFs go to the right-hand side.
+      const bool with_constraints = (constraints != nullptr);
+      auto       is_constrained   = [&](const types::global_dof_index dof) {
+        return with_constraints && constraints->is_constrained(dof);
+      };
+      std::vector<bool> fully_constrained(n, false);
+      if (with_constraints)
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            bool all = true;
+            for (const auto dof : node_set[k].dofs)
+              if (constraints->is_constrained(dof))
+                {
+                  AssertThrow(
+                    constraints->get_constraint_entries(dof)->empty(),
+                    ExcMessage("The PD operator eliminates only prescribed "
+                               "values u_k = g_k, not constraints that "
+                               "couple DoFs."));
+                }
+              else
+                all = false;
+            fully_constrained[k] = all;
+          }
+
+      // The dilatation of node j is theta_j = sum_k g_jk . (u_k - u_j) with
+      // g_jk = theta_factor_jk n_jk; G_j = sum_k g_jk.
+      std::vector<Tensor<1, dim>> g_sum(state_based ? n : 0);
+      if (state_based)
+        for (unsigned int j = 0; j < n; ++j)
+          if (listed[j])
+            for_each_bond(j, [&](const BondData &bond) {
+              g_sum[j] += bond.theta_factor * bond.n;
+            });
 
       // Dense scratch over local node indices, with the list of touched
       // entries: no per-bond allocation.
       std::vector<Tensor<2, dim>> block(n);
       std::vector<bool>           touched(n, false);
       std::vector<unsigned int>   columns;
-      auto add = [&](const unsigned int k, const Tensor<2, dim> &value) {
+      auto touch = [&](const unsigned int k) {
         if (!touched[k])
           {
             touched[k] = true;
             columns.push_back(k);
           }
-        block[k] += value;
+      };
+      auto clear_columns = [&]() {
+        for (const unsigned int k : columns)
+          {
+            touched[k] = false;
+            block[k]   = Tensor<2, dim>();
+          }
+        columns.clear();
+      };
+
+      // The columns of row i: i, its neighbours and (state-based) theirs.
+      auto row_columns = [&](const unsigned int i) {
+        touch(i);
+        for_each_bond(i, [&](const BondData &bond) {
+          touch(bond.neighbor);
+          if (state_based)
+            for_each_bond(bond.neighbor, [&](const BondData &second) {
+              touch(second.neighbor);
+            });
+        });
       };
 
       // dF_i/du for owned node i, into block[] (columns: local nodes).
       auto row_blocks = [&](const unsigned int i) {
         const double volume = node_set[i].volume();
-        add(i, Tensor<2, dim>());
+        touch(i);
         Tensor<1, dim> s_i; // V_i sum_j w_ij a_i(r_ij) n_ij
+        Tensor<2, dim> diagonal;
         for_each_bond(i, [&](const BondData &bond) {
+          const unsigned int   j = bond.neighbor;
           const Tensor<2, dim> k =
             (volume * bond.weight * bond.b_sum) * outer_product(bond.n, bond.n);
-          add(bond.neighbor, k);
-          add(i, -k);
+          touch(j);
+          block[j] += k;
+          diagonal -= k;
           if (state_based)
             {
               s_i += (volume * bond.weight * bond.a_i) * bond.n;
-              // Through theta_j: V_i w_ij a_j n_ij (x) d theta_j / du.
+              // Through theta_j: t (x) d theta_j / du, with
+              // t = V_i w_ij a_j n_ij.
               const Tensor<1, dim> t =
                 (volume * bond.weight * bond.a_j) * bond.n;
-              for_each_bond(bond.neighbor, [&](const BondData &second) {
-                const Tensor<2, dim> k2 =
-                  outer_product(t, second.theta_factor * second.n);
-                add(second.neighbor, k2);
-                add(bond.neighbor, -k2);
-              });
+              block[j] -= outer_product(t, g_sum[j]);
+              for (std::size_t b = offsets[j]; b < offsets[j + 1]; ++b)
+                {
+                  const BondData &second = bonds[b];
+                  touch(second.neighbor);
+                  const double c = second.theta_factor;
+                  for (unsigned int p = 0; p < dim; ++p)
+                    for (unsigned int q = 0; q < dim; ++q)
+                      block[second.neighbor][p][q] += c * t[p] * second.n[q];
+                }
             }
         });
         if (state_based)
-          for_each_bond(i, [&](const BondData &bond) {
-            const Tensor<2, dim> k =
-              outer_product(s_i, bond.theta_factor * bond.n);
-            add(bond.neighbor, k);
-            add(i, -k);
-          });
+          {
+            for_each_bond(i, [&](const BondData &bond) {
+              block[bond.neighbor] +=
+                outer_product(s_i, bond.theta_factor * bond.n);
+            });
+            diagonal -= outer_product(s_i, g_sum[i]);
+          }
+        block[i] += diagonal;
       };
 
-      // The sparsity pattern: exactly the touched columns of each row.
+      // The positive diagonal kept in the row of a constrained DoF: the
+      // pairwise (bond) part of K_kk, which has the scale of K_kk and costs
+      // one pass over the node's bonds.
+      auto constrained_diagonal = [&](const unsigned int i,
+                                      const unsigned int r) {
+        double d = 0;
+        for_each_bond(i, [&](const BondData &bond) {
+          d += node_set[i].volume() * bond.weight * std::abs(bond.b_sum) *
+               bond.n[r] * bond.n[r];
+        });
+        return d > 0 ? d : 1.;
+      };
+
+      // The sparsity pattern: exactly the free columns of each free row.
       DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
-      std::vector<std::vector<unsigned int>> row_columns(node_set.n_owned());
+      std::vector<types::global_dof_index> cols;
       for (unsigned int i = 0; i < node_set.n_owned(); ++i)
         {
-          row_blocks(i);
-          std::vector<types::global_dof_index> cols;
+          if (!fully_constrained[i])
+            row_columns(i);
+          cols.clear();
           for (const unsigned int k : columns)
-            {
-              cols.insert(cols.end(),
-                          node_set[k].dofs.begin(),
-                          node_set[k].dofs.end());
-              touched[k] = false;
-              block[k]   = Tensor<2, dim>();
-            }
+            for (const auto dof : node_set[k].dofs)
+              if (!is_constrained(dof))
+                cols.push_back(dof);
+          clear_columns();
           std::sort(cols.begin(), cols.end());
-          for (unsigned int c = 0; c < dim; ++c)
-            dsp.add_entries(node_set[i].dofs[c],
-                            cols.begin(),
-                            cols.end(),
-                            true);
-          columns.clear();
+          for (const auto row : node_set[i].dofs)
+            if (is_constrained(row))
+              dsp.add(row, row);
+            else
+              dsp.add_entries(row, cols.begin(), cols.end(), true);
         }
       matrix.reinit(owned, owned, dsp, nodes->get_communicator());
 
-      std::vector<types::global_dof_index> cols;
-      std::vector<double>                  values;
+      std::vector<double> values;
       for (unsigned int i = 0; i < node_set.n_owned(); ++i)
         {
-          row_blocks(i);
+          if (!fully_constrained[i])
+            row_blocks(i);
           for (unsigned int r = 0; r < dim; ++r)
             {
+              const auto row = node_set[i].dofs[r];
+              if (is_constrained(row))
+                {
+                  const double diagonal = constrained_diagonal(i, r);
+                  matrix.add(row, row, diagonal);
+                  (*rhs)[row] += diagonal * constraints->get_inhomogeneity(row);
+                  continue;
+                }
               cols.clear();
               values.clear();
+              double moved = 0;
               for (const unsigned int k : columns)
                 for (unsigned int c = 0; c < dim; ++c)
                   {
-                    cols.push_back(node_set[k].dofs[c]);
-                    values.push_back(-block[k][r][c]);
+                    const auto col = node_set[k].dofs[c];
+                    if (is_constrained(col))
+                      moved += block[k][r][c] *
+                               constraints->get_inhomogeneity(col);
+                    else
+                      {
+                        cols.push_back(col);
+                        values.push_back(-block[k][r][c]);
+                      }
                   }
-              matrix.add(node_set[i].dofs[r], cols, values);
+              matrix.add(row, cols, values);
+              if (with_constraints)
+                (*rhs)[row] += moved;
             }
-          for (const unsigned int k : columns)
-            {
-              touched[k] = false;
-              block[k]   = Tensor<2, dim>();
-            }
-          columns.clear();
+          clear_columns();
         }
       matrix.compress(VectorOperation::add);
+      if (with_constraints)
+        rhs->compress(VectorOperation::add);
+    }
+
+
+    template <int dim>
+    void
+    LinearPeridynamicOperator<dim>::assemble(
+      TrilinosWrappers::SparseMatrix &matrix) const
+    {
+      assemble_with(matrix, nullptr, nullptr);
+    }
+
+
+    template <int dim>
+    void
+    LinearPeridynamicOperator<dim>::assemble(
+      TrilinosWrappers::SparseMatrix  &matrix,
+      const AffineConstraints<double> &constraints,
+      TrilinosWrappers::MPI::Vector   &rhs) const
+    {
+      assemble_with(matrix, &constraints, &rhs);
+    }
+
+
+    template <int dim>
+    std::size_t
+    LinearPeridynamicOperator<dim>::n_owned_bonds() const
+    {
+      return offsets.empty() ? 0 : offsets[nodes->n_owned()];
     }
 
 

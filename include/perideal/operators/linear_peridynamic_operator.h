@@ -3,6 +3,7 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -82,6 +83,28 @@ namespace PeriDEAL
       void
       assemble(TrilinosWrappers::SparseMatrix &matrix) const;
 
+      /**
+       * Assemble the stiffness matrix of a problem with prescribed
+       * displacements u_k = g_k (@p constraints, over the locally relevant
+       * DoFs, holding only such identity constraints). Rows and columns of
+       * constrained DoFs are eliminated: a constrained row keeps only its
+       * diagonal entry \f$K_{kk}\f$ with right-hand side \f$K_{kk} g_k\f$,
+       * and the columns of constrained DoFs move to the right-hand side as
+       * \f$-K_{rk} g_k\f$. The matrix stays symmetric when K is; the
+       * sparsity pattern holds exactly the remaining entries. Contributions
+       * are added into @p rhs (owned DoFs; compressed here).
+       */
+      void
+      assemble(TrilinosWrappers::SparseMatrix  &matrix,
+               const AffineConstraints<double> &constraints,
+               TrilinosWrappers::MPI::Vector   &rhs) const;
+
+      /**
+       * The number of stored (nonzero-pattern) bonds of owned nodes.
+       */
+      std::size_t
+      n_owned_bonds() const;
+
       /// The owned DoFs (rows of the matrix).
       const IndexSet &
       owned_dofs() const;
@@ -104,6 +127,11 @@ namespace PeriDEAL
       std::vector<std::size_t>            offsets;
       std::vector<BondData>               bonds;
       IndexSet                            owned;
+
+      void
+      assemble_with(TrilinosWrappers::SparseMatrix  &matrix,
+                    const AffineConstraints<double> *constraints,
+                    TrilinosWrappers::MPI::Vector   *rhs) const;
 
       template <typename Function>
       void

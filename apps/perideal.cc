@@ -1,0 +1,131 @@
+// perideal: runs the quasi-static PD problem described by a parameter file.
+//
+//   perideal input.prm             run (under mpirun for several processes)
+//   perideal --print-parameters    every entry with its default and help
+//   perideal --help                usage
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/solvers/quasi_static_simulation.h>
+
+#include <iostream>
+#include <string>
+
+using namespace dealii;
+
+namespace
+{
+  void
+  print_usage(std::ostream &out)
+  {
+    out << "Usage: perideal <input.prm>\n"
+           "       perideal --print-parameters [2|3]\n"
+           "       perideal --help\n\n"
+           "Runs the quasi-static peridynamic problem described by the\n"
+           "deal.II parameter file <input.prm> (run it under mpirun for\n"
+           "several MPI processes). --print-parameters prints every entry,\n"
+           "with its default, allowed values and help text, for 3D (or the\n"
+           "dimension given). Examples are in the directory parameters/.\n";
+  }
+
+
+  // The dimension is read first, from the top-level entry "Dimension"; the
+  // full parse (which rejects unknown entries) follows once it is known.
+  unsigned int
+  read_dimension(const std::string &file)
+  {
+    ParameterHandler prm;
+    prm.declare_entry("Dimension", "3", Patterns::Integer(2, 3));
+    prm.parse_input(file, "", /*skip_undefined*/ true);
+    return prm.get_integer("Dimension");
+  }
+
+
+  template <int dim>
+  void
+  run(const std::string &file)
+  {
+    ParameterHandler prm;
+    PeriDEAL::Solvers::QuasiStaticSimulation<dim>::declare_parameters(prm);
+    prm.parse_input(file);
+    PeriDEAL::Solvers::QuasiStaticSimulation<dim> simulation(MPI_COMM_WORLD);
+    simulation.parse_parameters(prm);
+    simulation.run();
+  }
+
+
+  template <int dim>
+  void
+  print_parameters()
+  {
+    ParameterHandler prm;
+    PeriDEAL::Solvers::QuasiStaticSimulation<dim>::declare_parameters(prm);
+    prm.print_parameters(std::cout, ParameterHandler::PRM);
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  try
+    {
+      const std::string first = argc > 1 ? argv[1] : "";
+      if (argc < 2 || first == "--help" || first == "-h")
+        {
+          if (root)
+            print_usage(argc < 2 ? std::cerr : std::cout);
+          return argc < 2 ? 1 : 0;
+        }
+      if (first == "--print-parameters")
+        {
+          const std::string dim = argc > 2 ? argv[2] : "3";
+          if (dim != "2" && dim != "3")
+            {
+              if (root)
+                std::cerr << "perideal: --print-parameters takes 2 or 3, not '"
+                          << dim << "'." << std::endl;
+              return 1;
+            }
+          if (root)
+            {
+              if (dim == "2")
+                print_parameters<2>();
+              else
+                print_parameters<3>();
+            }
+          return 0;
+        }
+      if (argc > 2 || first.rfind("-", 0) == 0)
+        {
+          if (root)
+            {
+              std::cerr << "perideal: unexpected arguments.\n";
+              print_usage(std::cerr);
+            }
+          return 1;
+        }
+
+      if (read_dimension(first) == 2)
+        run<2>(first);
+      else
+        run<3>(first);
+    }
+  catch (const std::exception &exc)
+    {
+      if (root)
+        std::cerr << "\nperideal: error\n"
+                  << "----------------------------------------------------\n"
+                  << exc.what()
+                  << "----------------------------------------------------"
+                  << std::endl;
+      // Every process reaches the same input errors; an error on one process
+      // only would leave the others waiting, so end them all.
+      MPI_Abort(MPI_COMM_WORLD, 1);
+      return 1;
+    }
+  return 0;
+}

@@ -1,0 +1,108 @@
+#ifndef perideal_boundary_boundary_conditions_h
+#define perideal_boundary_boundary_conditions_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/types.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <perideal/discretization/node_set.h>
+
+#include <memory>
+#include <set>
+#include <vector>
+
+namespace PeriDEAL
+{
+  /**
+   * Boundary conditions and their treatment near the surface of a PD body.
+   */
+  namespace Boundary
+  {
+    using namespace dealii;
+
+    /**
+     * The loads and constraints of a quasi-static PD problem, as a user
+     * describes them in the subsection "Boundary conditions":
+     *
+     * - **Prescribed displacement in a volumetric layer.** Every node whose
+     *   distance to a boundary face with one of the "Dirichlet boundary
+     *   ids" is less than "Dirichlet layer thickness" (in horizons) has the
+     *   selected components of its displacement prescribed by the function
+     *   "Dirichlet displacement", evaluated at the node. The constraints
+     *   are inhomogeneous identity constraints u_k = g(x_i) in an
+     *   AffineConstraints object over the locally relevant DoFs, so that a
+     *   node's status is the same on every process that sees it.
+     * - **Body force** b(x), applied as the nodal force V_i b(x_i).
+     * - **Traction** t(x) on the boundary faces with one of the "Traction
+     *   boundary ids": the force t(x_f) |f| of face f goes to the node of
+     *   the cell that owns the face, i.e. the traction is spread over a
+     *   boundary layer one cell thick.
+     *
+     * Boundary ids are those of the triangulation: for a box built by
+     * PeriDEAL they are 0/1 for the faces x = min/max, 2/3 for y and 4/5
+     * for z. Loads on constrained DoFs are dropped (the reaction there is
+     * whatever the constraint needs).
+     */
+    template <int dim>
+    class BoundaryConditions
+    {
+    public:
+      BoundaryConditions();
+
+      /**
+       * Declare the entries of the current subsection.
+       */
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /**
+       * Find the nodes of the Dirichlet layers among the owned and ghost
+       * nodes of @p nodes and fill @p constraints (reinitialised over
+       * nodes.relevant_dofs()). Checks that the boundary ids exist in the
+       * mesh and that some nodes stay free.
+       */
+      void
+      make_constraints(const DoFHandler<dim>              &dof_handler,
+                       const Discretization::NodeSet<dim> &nodes,
+                       const double                        horizon,
+                       AffineConstraints<double>          &constraints) const;
+
+      /**
+       * The external nodal forces (body force and traction) on the owned
+       * DoFs that are not constrained, added into @p load.
+       */
+      void
+      add_load(const DoFHandler<dim>              &dof_handler,
+               const Discretization::NodeSet<dim> &nodes,
+               const AffineConstraints<double>    &constraints,
+               TrilinosWrappers::MPI::Vector      &load) const;
+
+      /**
+       * The number of owned nodes with at least one constrained component.
+       */
+      unsigned int
+      n_constrained_nodes(const Discretization::NodeSet<dim> &nodes,
+                          const AffineConstraints<double>    &constraints) const;
+
+    private:
+      std::vector<types::boundary_id> dirichlet_ids;
+      std::vector<bool>               dirichlet_components;
+      double                          layer_thickness = 1;
+      std::vector<types::boundary_id> traction_ids;
+
+      std::unique_ptr<Functions::ParsedFunction<dim>> dirichlet_displacement;
+      std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
+      std::unique_ptr<Functions::ParsedFunction<dim>> traction;
+    };
+  } // namespace Boundary
+} // namespace PeriDEAL
+
+#endif

@@ -1,0 +1,74 @@
+#ifndef perideal_io_solution_output_h
+#define perideal_io_solution_output_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <perideal/discretization/node_set.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace PeriDEAL
+{
+  /**
+   * Output for ParaView and summaries of runs.
+   */
+  namespace IO
+  {
+    using namespace dealii;
+
+    /**
+     * A scalar field with one value per owned node, in the order of
+     * NodeSet's owned nodes, and its name in the output.
+     */
+    struct NodeField
+    {
+      std::string         name;
+      std::vector<double> values;
+    };
+
+    /**
+     * Writes a PD solution as VTU pieces (one per process) with a PVTU
+     * record for ParaView: the displacement as a vector field and any
+     * number of per-node scalar fields, each as cell data on the cell of its
+     * node. Reads the subsection "Output" (directory, base name, whether to
+     * write at all).
+     */
+    template <int dim>
+    class SolutionOutput
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /**
+       * Write the fields; returns the name of the PVTU record (empty if
+       * writing is switched off). The output directory is created if
+       * missing.
+       */
+      std::string
+      write(const DoFHandler<dim>               &dof_handler,
+            const Discretization::NodeSet<dim>  &nodes,
+            const TrilinosWrappers::MPI::Vector &displacement,
+            const std::vector<NodeField>        &fields) const;
+
+      const std::string &
+      directory() const;
+
+    private:
+      bool        enabled = true;
+      std::string output_directory;
+      std::string base_name;
+    };
+  } // namespace IO
+} // namespace PeriDEAL
+
+#endif

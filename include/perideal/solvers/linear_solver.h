@@ -1,0 +1,87 @@
+#ifndef perideal_solvers_linear_solver_h
+#define perideal_solvers_linear_solver_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <string>
+#include <vector>
+
+namespace PeriDEAL
+{
+  /**
+   * Linear solvers, quasi-static drivers and (later) time integrators.
+   */
+  namespace Solvers
+  {
+    using namespace dealii;
+
+    /**
+     * What a linear solve did: the method, the number of iterations (1 for a
+     * direct solve), the relative residual \f$|b - Ax|/|b|\f$ measured after
+     * the solve (not the solver's own estimate), and the wall time.
+     */
+    struct SolverReport
+    {
+      std::string  method;
+      unsigned int iterations        = 0;
+      double       relative_residual = 0;
+      double       seconds           = 0;
+    };
+
+    /**
+     * The linear solver of a PD system, chosen in the subsection
+     * "Linear solver" of the input file: a sparse direct solver through
+     * Trilinos Amesos (MUMPS by default), or a Krylov method (CG, GMRES,
+     * BiCGStab) from deal.II's Trilinos wrappers with an algebraic multigrid
+     * (ML), Jacobi, SSOR or no preconditioner.
+     *
+     * A solve that does not reach its tolerance is an error (the run stops
+     * before any output is written), and every solve reports the residual it
+     * actually achieved.
+     */
+    class LinearSolver
+    {
+    public:
+      /**
+       * Declare the entries of the current subsection.
+       */
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /**
+       * Solve \f$A x = b\f$. @p constant_modes are the rigid translations,
+       * one boolean mask over the locally owned DoFs per displacement
+       * component, used by the AMG preconditioner; may be empty.
+       * @p symmetric says whether @p matrix is symmetric: CG on a
+       * non-symmetric matrix is refused.
+       */
+      SolverReport
+      solve(const TrilinosWrappers::SparseMatrix     &matrix,
+            TrilinosWrappers::MPI::Vector            &solution,
+            const TrilinosWrappers::MPI::Vector      &rhs,
+            const std::vector<std::vector<bool>>     &constant_modes,
+            const bool                                symmetric) const;
+
+      const std::string &
+      method() const;
+
+    private:
+      std::string  method_name      = "direct";
+      std::string  direct_package   = "MUMPS";
+      std::string  preconditioner   = "AMG";
+      double       tolerance        = 1e-10;
+      unsigned int max_iterations   = 10000;
+      unsigned int restart_length   = 200;
+      unsigned int smoother_sweeps  = 2;
+      double       aggregation      = 1e-4;
+    };
+  } // namespace Solvers
+} // namespace PeriDEAL
+
+#endif

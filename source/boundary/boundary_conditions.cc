@@ -1,0 +1,343 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/boost_adaptors/bounding_box.h>
+
+#include <deal.II/numerics/rtree.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/boundary/boundary_conditions.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Boundary
+  {
+    namespace
+    {
+      const char *const component_names = "x|y|z";
+
+      std::vector<types::boundary_id>
+      parse_ids(const std::string &text)
+      {
+        std::vector<types::boundary_id> ids;
+        for (const int id :
+             Utilities::string_to_int(Utilities::split_string_list(text)))
+          ids.push_back(static_cast<types::boundary_id>(id));
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        return ids;
+      }
+
+      std::string
+      ids_to_string(const std::vector<types::boundary_id> &ids)
+      {
+        std::string s;
+        for (const auto id : ids)
+          s += (s.empty() ? "" : ", ") + std::to_string(id);
+        return s;
+      }
+
+      // A vector function in the subsection @p name: checks the number of
+      // components before deal.II's parser does, to name the entry.
+      template <int dim>
+      std::unique_ptr<Functions::ParsedFunction<dim>>
+      parse_vector_function(ParameterHandler &prm, const std::string &name)
+      {
+        prm.enter_subsection(name);
+        const std::string expression = prm.get("Function expression");
+        const auto n_given = Utilities::split_string_list(expression, ';').size();
+        AssertThrow(n_given == dim,
+                    ExcInvalidInput("Boundary conditions/" + name +
+                                      "/Function expression",
+                                    expression,
+                                    "give " + std::to_string(dim) +
+                                      " expressions separated by ';', one "
+                                      "per displacement component"));
+        auto function = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+        function->parse_parameters(prm);
+        prm.leave_subsection();
+        return function;
+      }
+
+      template <int dim>
+      double
+      distance_squared(const BoundingBox<dim> &box, const Point<dim> &p)
+      {
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double below = box.lower_bound(d) - p[d];
+            const double above = p[d] - box.upper_bound(d);
+            const double gap   = std::max(0., std::max(below, above));
+            d2 += gap * gap;
+          }
+        return d2;
+      }
+
+      template <int dim>
+      BoundingBox<dim>
+      face_box(const typename DoFHandler<dim>::active_cell_iterator &cell,
+               const unsigned int                                    f)
+      {
+        std::vector<Point<dim>> vertices;
+        for (const unsigned int v : cell->face(f)->vertex_indices())
+          vertices.push_back(cell->face(f)->vertex(v));
+        return BoundingBox<dim>(vertices);
+      }
+    } // namespace
+
+
+    template <int dim>
+    BoundaryConditions<dim>::BoundaryConditions()
+      : dirichlet_components(dim, true)
+    {}
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry(
+        "Dirichlet boundary ids",
+        "",
+        Patterns::List(Patterns::Integer(0, 254)),
+        "Boundary ids of the faces whose volumetric layer has a prescribed "
+        "displacement. A box made by PeriDEAL has ids 0/1 on x = min/max, "
+        "2/3 on y, 4/5 on z; a mesh file brings its own ids.");
+      prm.declare_entry("Dirichlet components",
+                        dim == 2 ? "x,y" : "x,y,z",
+                        Patterns::MultipleSelection(
+                          dim == 2 ? "x|y" : component_names),
+                        "The displacement components prescribed in the "
+                        "Dirichlet layer; the others are free there.");
+      prm.declare_entry(
+        "Dirichlet layer thickness",
+        "1",
+        Patterns::Double(0),
+        "Thickness of the Dirichlet layer in horizons: nodes closer than "
+        "this to a Dirichlet face are constrained. With a state-based model "
+        "a thickness of 2 gives every free node's neighbours a full "
+        "neighbourhood.");
+      prm.enter_subsection("Dirichlet displacement");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Body force");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.leave_subsection();
+
+      prm.declare_entry("Traction boundary ids",
+                        "",
+                        Patterns::List(Patterns::Integer(0, 254)),
+                        "Boundary ids of the faces that carry the traction "
+                        "given in the subsection 'Traction'.");
+      prm.enter_subsection("Traction");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      dirichlet_ids = parse_ids(prm.get("Dirichlet boundary ids"));
+      traction_ids  = parse_ids(prm.get("Traction boundary ids"));
+      for (const auto id : traction_ids)
+        AssertThrow(std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) ==
+                      dirichlet_ids.end(),
+                    ExcInvalidInput("Boundary conditions/Traction boundary ids",
+                                    prm.get("Traction boundary ids"),
+                                    "boundary id " + std::to_string(id) +
+                                      " is also a Dirichlet boundary id; a "
+                                      "face carries either a displacement "
+                                      "or a traction"));
+      const auto components =
+        Utilities::split_string_list(prm.get("Dirichlet components"));
+      dirichlet_components.assign(dim, false);
+      for (const auto &c : components)
+        dirichlet_components[c[0] - 'x'] = true;
+
+      layer_thickness = prm.get_double("Dirichlet layer thickness");
+      AssertThrow(dirichlet_ids.empty() || layer_thickness > 0,
+                  ExcInvalidInput(
+                    "Boundary conditions/Dirichlet layer thickness",
+                    prm.get("Dirichlet layer thickness"),
+                    "give a thickness > 0 (in horizons), for instance 1"));
+
+      dirichlet_displacement =
+        parse_vector_function<dim>(prm, "Dirichlet displacement");
+      body_force = parse_vector_function<dim>(prm, "Body force");
+      traction   = parse_vector_function<dim>(prm, "Traction");
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::make_constraints(
+      const DoFHandler<dim>              &dof_handler,
+      const Discretization::NodeSet<dim> &nodes,
+      const double                        horizon,
+      AffineConstraints<double>          &constraints) const
+    {
+      const MPI_Comm comm = dof_handler.get_communicator();
+      constraints.clear();
+      constraints.reinit(nodes.relevant_dofs());
+
+      // Every id named in the input must exist in the mesh.
+      const auto mesh_ids = dof_handler.get_triangulation().get_boundary_ids();
+      for (const auto &[ids, entry] :
+           {std::make_pair(&dirichlet_ids, "Dirichlet boundary ids"),
+            std::make_pair(&traction_ids, "Traction boundary ids")})
+        for (const auto id : *ids)
+          {
+            std::vector<types::boundary_id> sorted(mesh_ids.begin(),
+                                                   mesh_ids.end());
+            AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
+                          mesh_ids.end(),
+                        ExcInvalidInput(std::string("Boundary conditions/") +
+                                          entry,
+                                        ids_to_string(*ids),
+                                        "boundary id " + std::to_string(id) +
+                                          " does not occur in the mesh, "
+                                          "whose boundary ids are " +
+                                          ids_to_string(sorted)));
+          }
+
+      if (dirichlet_ids.empty())
+        {
+          constraints.close();
+          return;
+        }
+
+      // The Dirichlet faces of all processes (a layer can be several cells
+      // thick and cross partition boundaries), in an R-tree.
+      std::vector<BoundingBox<dim>> local_faces;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) &&
+                std::binary_search(dirichlet_ids.begin(),
+                                   dirichlet_ids.end(),
+                                   cell->face(f)->boundary_id()))
+              local_faces.push_back(face_box<dim>(cell, f));
+      std::vector<BoundingBox<dim>> faces;
+      for (const auto &part : Utilities::MPI::all_gather(comm, local_faces))
+        faces.insert(faces.end(), part.begin(), part.end());
+      const auto tree = pack_rtree(faces);
+
+      const double thickness = layer_thickness * horizon;
+      // Nodes at exactly the layer thickness (horizons at half-integer
+      // m-ratios) are free: a relative margin keeps that decision
+      // independent of round-off in the node coordinates.
+      const double   limit = thickness * (1 - 1e-10);
+      Vector<double> g(dim);
+      for (const auto &node : nodes.nodes())
+        {
+          BoundingBox<dim> search(std::make_pair(node.location, node.location));
+          search.extend(thickness);
+          std::vector<BoundingBox<dim>> candidates;
+          tree.query(boost::geometry::index::intersects(search),
+                     std::back_inserter(candidates));
+          bool inside = false;
+          for (const auto &face : candidates)
+            if (distance_squared(face, node.location) < limit * limit)
+              {
+                inside = true;
+                break;
+              }
+          if (!inside)
+            continue;
+          dirichlet_displacement->vector_value(node.location, g);
+          for (unsigned int c = 0; c < dim; ++c)
+            if (dirichlet_components[c])
+              {
+                constraints.add_line(node.dofs[c]);
+                constraints.set_inhomogeneity(node.dofs[c], g[c]);
+              }
+        }
+      constraints.close();
+
+      const unsigned int n_free =
+        Utilities::MPI::sum(nodes.n_owned() -
+                              n_constrained_nodes(nodes, constraints),
+                            comm);
+      AssertThrow(n_free > 0,
+                  ExcInvalidInput(
+                    "Boundary conditions/Dirichlet layer thickness",
+                    std::to_string(layer_thickness),
+                    "every node lies in the Dirichlet layer (" +
+                      std::to_string(thickness) +
+                      " thick); use a thinner layer, a smaller horizon or "
+                      "a larger body"));
+    }
+
+
+    template <int dim>
+    unsigned int
+    BoundaryConditions<dim>::n_constrained_nodes(
+      const Discretization::NodeSet<dim> &nodes,
+      const AffineConstraints<double>    &constraints) const
+    {
+      unsigned int n = 0;
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (constraints.is_constrained(nodes[i].dofs[c]))
+            {
+              ++n;
+              break;
+            }
+      return n;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::add_load(
+      const DoFHandler<dim>              &dof_handler,
+      const Discretization::NodeSet<dim> &nodes,
+      const AffineConstraints<double>    &constraints,
+      TrilinosWrappers::MPI::Vector      &load) const
+    {
+      Vector<double> value(dim);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          body_force->vector_value(nodes[i].location, value);
+          for (unsigned int c = 0; c < dim; ++c)
+            if (!constraints.is_constrained(nodes[i].dofs[c]))
+              load[nodes[i].dofs[c]] += nodes[i].volume() * value[c];
+        }
+
+      if (!traction_ids.empty())
+        {
+          const auto &fe = dof_handler.get_fe();
+          std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const unsigned int f : cell->face_indices())
+                if (cell->at_boundary(f) &&
+                    std::binary_search(traction_ids.begin(),
+                                       traction_ids.end(),
+                                       cell->face(f)->boundary_id()))
+                  {
+                    cell->get_dof_indices(dofs);
+                    traction->vector_value(cell->face(f)->center(), value);
+                    const double area = cell->face(f)->measure();
+                    for (unsigned int k = 0; k < dofs.size(); ++k)
+                      if (!constraints.is_constrained(dofs[k]))
+                        load[dofs[k]] +=
+                          area * value[fe.system_to_component_index(k).first];
+                  }
+        }
+      load.compress(VectorOperation::add);
+    }
+
+
+    template class BoundaryConditions<2>;
+    template class BoundaryConditions<3>;
+  } // namespace Boundary
+} // namespace PeriDEAL

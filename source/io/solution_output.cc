@@ -1,0 +1,112 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/io/solution_output.h>
+
+#include <filesystem>
+
+namespace PeriDEAL
+{
+  namespace IO
+  {
+    template <int dim>
+    void
+    SolutionOutput<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Write VTU",
+                        "true",
+                        Patterns::Bool(),
+                        "Whether to write the solution as VTU/PVTU files for "
+                        "ParaView.");
+      prm.declare_entry("Directory",
+                        "output",
+                        Patterns::DirectoryName(),
+                        "Directory of the output files, created if missing; "
+                        "relative to the working directory.");
+      prm.declare_entry("Base name",
+                        "solution",
+                        Patterns::FileName(),
+                        "Base name of the output files: <base name>_0.pvtu "
+                        "and one <base name>_0.<rank>.vtu per process.");
+    }
+
+
+    template <int dim>
+    void
+    SolutionOutput<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      enabled          = prm.get_bool("Write VTU");
+      output_directory = prm.get("Directory");
+      base_name        = prm.get("Base name");
+      AssertThrow(!base_name.empty() &&
+                    base_name.find('/') == std::string::npos,
+                  ExcInvalidInput("Output/Base name",
+                                  base_name,
+                                  "give a plain file name without '/'; the "
+                                  "directory goes in 'Directory'"));
+    }
+
+
+    template <int dim>
+    const std::string &
+    SolutionOutput<dim>::directory() const
+    {
+      return output_directory;
+    }
+
+
+    template <int dim>
+    std::string
+    SolutionOutput<dim>::write(
+      const DoFHandler<dim>               &dof_handler,
+      const Discretization::NodeSet<dim>  &nodes,
+      const TrilinosWrappers::MPI::Vector &displacement,
+      const std::vector<NodeField>        &fields) const
+    {
+      if (!enabled)
+        return "";
+      const MPI_Comm comm = dof_handler.get_communicator();
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        std::filesystem::create_directories(output_directory);
+      MPI_Barrier(comm);
+
+      // Owned nodes follow the locally owned active cells in order.
+      const auto        &tria = dof_handler.get_triangulation();
+      std::vector<Vector<float>> cell_data(
+        fields.size(), Vector<float>(tria.n_active_cells()));
+      unsigned int node = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            for (unsigned int f = 0; f < fields.size(); ++f)
+              cell_data[f][cell->active_cell_index()] = fields[f].values[node];
+            ++node;
+          }
+      AssertThrow(node == nodes.n_owned(), ExcInternalError());
+
+      DataOut<dim> data_out;
+      data_out.attach_dof_handler(dof_handler);
+      const std::vector<std::string> names(dim, "displacement");
+      const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+        interpretation(dim,
+                       DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(displacement,
+                               names,
+                               DataOut<dim>::type_dof_data,
+                               interpretation);
+      for (unsigned int f = 0; f < fields.size(); ++f)
+        data_out.add_data_vector(cell_data[f],
+                                 fields[f].name,
+                                 DataOut<dim>::type_cell_data);
+      data_out.build_patches();
+      return data_out.write_vtu_with_pvtu_record(
+        output_directory + "/", base_name, 0, comm);
+    }
+
+
+    template class SolutionOutput<2>;
+    template class SolutionOutput<3>;
+  } // namespace IO
+} // namespace PeriDEAL

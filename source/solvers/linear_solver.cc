@@ -1,0 +1,208 @@
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/solvers/linear_solver.h>
+
+#include <memory>
+
+namespace PeriDEAL
+{
+  namespace Solvers
+  {
+    void
+    LinearSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry(
+        "Method",
+        "direct",
+        Patterns::Selection("direct|CG|GMRES|BiCGStab"),
+        "How to solve the linear system. 'direct': a sparse LU/LDL^T "
+        "factorisation through Trilinos Amesos (see 'Direct solver "
+        "package'); robust, but its memory grows quickly with the number of "
+        "nodes and with the m-ratio. 'CG': conjugate gradients, for "
+        "symmetric positive definite systems (LPS and bond-based models with "
+        "volumetric Dirichlet layers). 'GMRES' and 'BiCGStab': for "
+        "non-symmetric systems.");
+      prm.declare_entry("Direct solver package",
+                        "MUMPS",
+                        Patterns::Selection("MUMPS|KLU"),
+                        "The Amesos package used by the direct method: "
+                        "MUMPS (parallel multifrontal) or KLU (serial).");
+      prm.declare_entry(
+        "Preconditioner",
+        "AMG",
+        Patterns::Selection("AMG|Jacobi|SSOR|none"),
+        "Preconditioner of the Krylov methods: Trilinos ML algebraic "
+        "multigrid (with the rigid translations as near-null space), point "
+        "Jacobi, SSOR, or none.");
+      prm.declare_entry("Relative tolerance",
+                        "1e-10",
+                        Patterns::Double(0),
+                        "Krylov methods stop when |b - Ax| <= tolerance |b|. "
+                        "A method that does not reach it is an error.");
+      prm.declare_entry("Maximum iterations",
+                        "10000",
+                        Patterns::Integer(1),
+                        "Iteration limit of the Krylov methods.");
+      prm.declare_entry("GMRES restart length",
+                        "200",
+                        Patterns::Integer(1),
+                        "Size of the Krylov space before GMRES restarts.");
+      prm.declare_entry("AMG smoother sweeps",
+                        "2",
+                        Patterns::Integer(1),
+                        "Chebyshev smoother sweeps per AMG level.");
+      prm.declare_entry("AMG aggregation threshold",
+                        "1e-4",
+                        Patterns::Double(0),
+                        "Entries below this fraction of the diagonal are "
+                        "ignored when ML builds its aggregates. PD matrices "
+                        "are dense within two horizons; values of 1e-4 to "
+                        "1e-2 work.");
+    }
+
+
+    void
+    LinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      method_name     = prm.get("Method");
+      direct_package  = prm.get("Direct solver package");
+      preconditioner  = prm.get("Preconditioner");
+      tolerance       = prm.get_double("Relative tolerance");
+      max_iterations  = prm.get_integer("Maximum iterations");
+      restart_length  = prm.get_integer("GMRES restart length");
+      smoother_sweeps = prm.get_integer("AMG smoother sweeps");
+      aggregation     = prm.get_double("AMG aggregation threshold");
+      AssertThrow(tolerance < 1,
+                  ExcInvalidInput("Linear solver/Relative tolerance",
+                                  std::to_string(tolerance),
+                                  "give a relative tolerance below 1, for "
+                                  "instance 1e-10"));
+    }
+
+
+    const std::string &
+    LinearSolver::method() const
+    {
+      return method_name;
+    }
+
+
+    SolverReport
+    LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                        TrilinosWrappers::MPI::Vector        &solution,
+                        const TrilinosWrappers::MPI::Vector  &rhs,
+                        const std::vector<std::vector<bool>> &constant_modes,
+                        const bool                            symmetric) const
+    {
+      Timer        timer;
+      SolverReport report;
+      const double rhs_norm = rhs.l2_norm();
+      if (rhs_norm == 0)
+        {
+          // A = 0 right-hand side: the solution is zero, and a relative
+          // residual is meaningless.
+          solution = 0;
+          report.method = method_name;
+          return report;
+        }
+
+      if (method_name == "direct")
+        {
+          report.method = "direct (Amesos " + direct_package + ")";
+          SolverControl control(1, 0);
+          TrilinosWrappers::SolverDirect::AdditionalData data(
+            false, direct_package == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu");
+          TrilinosWrappers::SolverDirect solver(control, data);
+          solver.solve(matrix, solution, rhs);
+          report.iterations = 1;
+        }
+      else
+        {
+          AssertThrow(method_name != "CG" || symmetric,
+                      ExcInvalidInput("Linear solver/Method",
+                                      method_name,
+                                      "this system is not symmetric; use "
+                                      "GMRES, BiCGStab or direct"));
+          report.method = method_name + " + " + preconditioner;
+
+          std::unique_ptr<TrilinosWrappers::PreconditionBase> precondition;
+          if (preconditioner == "AMG")
+            {
+              TrilinosWrappers::PreconditionAMG::AdditionalData data;
+              data.elliptic              = true;
+              data.constant_modes        = constant_modes;
+              data.smoother_sweeps       = smoother_sweeps;
+              data.aggregation_threshold = aggregation;
+              auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+              amg->initialize(matrix, data);
+              precondition = std::move(amg);
+            }
+          else if (preconditioner == "Jacobi")
+            {
+              auto jacobi =
+                std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+              jacobi->initialize(matrix);
+              precondition = std::move(jacobi);
+            }
+          else if (preconditioner == "SSOR")
+            {
+              auto ssor = std::make_unique<TrilinosWrappers::PreconditionSSOR>();
+              ssor->initialize(matrix);
+              precondition = std::move(ssor);
+            }
+          else
+            precondition =
+              std::make_unique<TrilinosWrappers::PreconditionIdentity>();
+
+          SolverControl control(max_iterations, tolerance * rhs_norm);
+          try
+            {
+              if (method_name == "CG")
+                {
+                  TrilinosWrappers::SolverCG solver(control);
+                  solver.solve(matrix, solution, rhs, *precondition);
+                }
+              else if (method_name == "GMRES")
+                {
+                  TrilinosWrappers::SolverGMRES solver(
+                    control,
+                    TrilinosWrappers::SolverGMRES::AdditionalData(
+                      false, restart_length));
+                  solver.solve(matrix, solution, rhs, *precondition);
+                }
+              else
+                {
+                  TrilinosWrappers::SolverBicgstab solver(control);
+                  solver.solve(matrix, solution, rhs, *precondition);
+                }
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              AssertThrow(false,
+                          ExcMessage(
+                            "The linear solver (" + report.method +
+                            ") did not converge: after " +
+                            std::to_string(e.last_step) +
+                            " iterations the residual is " +
+                            std::to_string(e.last_residual / rhs_norm) +
+                            " of |b|, above the 'Relative tolerance' " +
+                            std::to_string(tolerance) +
+                            ". Raise 'Maximum iterations', change the "
+                            "preconditioner, or use 'Method = direct'."));
+            }
+          report.iterations = control.last_step();
+        }
+
+      TrilinosWrappers::MPI::Vector residual(rhs);
+      report.relative_residual =
+        matrix.residual(residual, solution, rhs) / rhs_norm;
+      report.seconds = timer.wall_time();
+      return report;
+    }
+  } // namespace Solvers
+} // namespace PeriDEAL
