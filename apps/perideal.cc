@@ -9,13 +9,35 @@
 
 #include <perideal/solvers/quasi_static_simulation.h>
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 using namespace dealii;
 
 namespace
 {
+  // An error whose message is meant for the user as it is.
+  struct InputError : public std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
+
+
+  // deal.II's exceptions carry the source location and condition; users
+  // need the "additional information" only.
+  std::string
+  user_message(const dealii::ExceptionBase &exc)
+  {
+    std::ostringstream info;
+    exc.print_info(info);
+    return info.str();
+  }
+
+
   void
   print_usage(std::ostream &out)
   {
@@ -49,9 +71,27 @@ namespace
     ParameterHandler prm;
     PeriDEAL::Solvers::QuasiStaticSimulation<dim>::declare_parameters(prm);
     prm.parse_input(file);
-    PeriDEAL::Solvers::QuasiStaticSimulation<dim> simulation(MPI_COMM_WORLD);
-    simulation.parse_parameters(prm);
-    simulation.run();
+    // The simulation is destroyed before an error propagates: its timer
+    // then finishes quietly instead of warning about an exception in flight.
+    std::string other_error;
+    {
+      PeriDEAL::Solvers::QuasiStaticSimulation<dim> simulation(MPI_COMM_WORLD);
+      try
+        {
+          simulation.parse_parameters(prm);
+          simulation.run();
+        }
+      catch (const dealii::ExceptionBase &exc)
+        {
+          other_error = user_message(exc);
+        }
+      catch (const std::exception &exc)
+        {
+          other_error = exc.what();
+        }
+    }
+    if (!other_error.empty())
+      throw InputError(other_error);
   }
 
 
@@ -109,6 +149,11 @@ main(int argc, char **argv)
           return 1;
         }
 
+      if (!std::filesystem::is_regular_file(first) ||
+          !std::ifstream(first).good())
+        throw InputError("Cannot read the parameter file '" + first +
+                         "': no such readable file. Give the path of a .prm "
+                         "file; examples are in parameters/.\n");
       if (read_dimension(first) == 2)
         run<2>(first);
       else
@@ -116,15 +161,16 @@ main(int argc, char **argv)
     }
   catch (const std::exception &exc)
     {
+      const auto *deal_exception =
+        dynamic_cast<const dealii::ExceptionBase *>(&exc);
       if (root)
         std::cerr << "\nperideal: error\n"
-                  << "----------------------------------------------------\n"
-                  << exc.what()
-                  << "----------------------------------------------------"
+                  << (deal_exception ? user_message(*deal_exception) :
+                                       std::string(exc.what()))
                   << std::endl;
-      // Every process reaches the same input errors; an error on one process
-      // only would leave the others waiting, so end them all.
-      MPI_Abort(MPI_COMM_WORLD, 1);
+      // Input errors are found alike on every process (each reads the whole
+      // file; checks that need global data reduce it first), so all
+      // processes end here and leave together.
       return 1;
     }
   return 0;

@@ -49,7 +49,8 @@ namespace PeriDEAL
       {
         prm.enter_subsection(name);
         const std::string expression = prm.get("Function expression");
-        const auto n_given = Utilities::split_string_list(expression, ';').size();
+        const auto        n_given =
+          Utilities::split_string_list(expression, ';').size();
         AssertThrow(n_given == dim,
                     ExcInvalidInput("Boundary conditions/" + name +
                                       "/Function expression",
@@ -110,8 +111,8 @@ namespace PeriDEAL
         "2/3 on y, 4/5 on z; a mesh file brings its own ids.");
       prm.declare_entry("Dirichlet components",
                         dim == 2 ? "x,y" : "x,y,z",
-                        Patterns::MultipleSelection(
-                          dim == 2 ? "x|y" : component_names),
+                        Patterns::MultipleSelection(dim == 2 ? "x|y" :
+                                                               component_names),
                         "The displacement components prescribed in the "
                         "Dirichlet layer; the others are free there.");
       prm.declare_entry(
@@ -163,11 +164,11 @@ namespace PeriDEAL
         dirichlet_components[c[0] - 'x'] = true;
 
       layer_thickness = prm.get_double("Dirichlet layer thickness");
-      AssertThrow(dirichlet_ids.empty() || layer_thickness > 0,
-                  ExcInvalidInput(
-                    "Boundary conditions/Dirichlet layer thickness",
-                    prm.get("Dirichlet layer thickness"),
-                    "give a thickness > 0 (in horizons), for instance 1"));
+      AssertThrow(
+        dirichlet_ids.empty() || layer_thickness > 0,
+        ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
+                        prm.get("Dirichlet layer thickness"),
+                        "give a thickness > 0 (in horizons), for instance 1"));
 
       dirichlet_displacement =
         parse_vector_function<dim>(prm, "Dirichlet displacement");
@@ -197,15 +198,14 @@ namespace PeriDEAL
           {
             std::vector<types::boundary_id> sorted(mesh_ids.begin(),
                                                    mesh_ids.end());
-            AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
-                          mesh_ids.end(),
-                        ExcInvalidInput(std::string("Boundary conditions/") +
-                                          entry,
-                                        ids_to_string(*ids),
-                                        "boundary id " + std::to_string(id) +
-                                          " does not occur in the mesh, "
-                                          "whose boundary ids are " +
-                                          ids_to_string(sorted)));
+            AssertThrow(
+              std::find(mesh_ids.begin(), mesh_ids.end(), id) != mesh_ids.end(),
+              ExcInvalidInput(std::string("Boundary conditions/") + entry,
+                              ids_to_string(*ids),
+                              "boundary id " + std::to_string(id) +
+                                " does not occur in the mesh, "
+                                "whose boundary ids are " +
+                                ids_to_string(sorted)));
           }
 
       if (dirichlet_ids.empty())
@@ -266,14 +266,14 @@ namespace PeriDEAL
         Utilities::MPI::sum(nodes.n_owned() -
                               n_constrained_nodes(nodes, constraints),
                             comm);
-      AssertThrow(n_free > 0,
-                  ExcInvalidInput(
-                    "Boundary conditions/Dirichlet layer thickness",
-                    std::to_string(layer_thickness),
-                    "every node lies in the Dirichlet layer (" +
-                      std::to_string(thickness) +
-                      " thick); use a thinner layer, a smaller horizon or "
-                      "a larger body"));
+      AssertThrow(
+        n_free > 0,
+        ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
+                        std::to_string(layer_thickness),
+                        "every node lies in the Dirichlet layer (" +
+                          std::to_string(thickness) +
+                          " thick); use a thinner layer, a smaller horizon or "
+                          "a larger body"));
     }
 
 
@@ -314,7 +314,7 @@ namespace PeriDEAL
 
       if (!traction_ids.empty())
         {
-          const auto &fe = dof_handler.get_fe();
+          const auto                          &fe = dof_handler.get_fe();
           std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (cell->is_locally_owned())

@@ -2,12 +2,15 @@
 
 #include <deal.II/fe/fe.h>
 
-#include <deal.II/grid/filtered_iterator.h>
-#include <deal.II/grid/grid_tools.h>
+#include <deal.II/boost_adaptors/bounding_box.h>
+
+#include <deal.II/numerics/rtree.h>
 
 #include <perideal/discretization/node_set.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -33,43 +36,48 @@ namespace PeriDEAL
         return d2;
       }
 
-      // The cell's bounding box, after checking that the cell is that box:
-      // every vertex a corner of the box, and the same measure.
-      template <int dim>
-      BoundingBox<dim>
-      box_of_cell(const typename DoFHandler<dim>::active_cell_iterator &cell)
-      {
-        const BoundingBox<dim> box       = cell->bounding_box();
-        const double           tolerance = 1e-10 * cell->diameter();
-        bool                   is_box    = true;
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const double x = cell->vertex(v)[d];
-              is_box =
-                is_box && (std::abs(x - box.lower_bound(d)) <= tolerance ||
-                           std::abs(x - box.upper_bound(d)) <= tolerance);
-            }
-        is_box = is_box && std::abs(cell->measure() - box.volume()) <=
-                             1e-10 * box.volume();
-        if (!is_box)
-          {
-            std::ostringstream where;
-            where << "cell " << cell->id() << " with vertices";
-            for (const unsigned int v : cell->vertex_indices())
-              where << " (" << cell->vertex(v) << ")";
-            AssertThrow(false,
-                        ExcMessage(
-                          "PeriDEAL places PD nodes at the centres of cells "
-                          "that are axis-aligned boxes (partial volumes are "
-                          "computed for boxes), but the mesh contains a " +
-                          where.str() +
-                          ". Use a Cartesian mesh: every cell a box with "
-                          "faces normal to the coordinate axes."));
-          }
-        return box;
-      }
     } // namespace
+
+
+    template <int dim>
+    BoundingBox<dim>
+    cell_box(const CellAccessor<dim> &cell)
+    {
+      const BoundingBox<dim> box       = cell.bounding_box();
+      const double           tolerance = 1e-10 * cell.diameter();
+      bool                   is_box    = true;
+      for (const unsigned int v : cell.vertex_indices())
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double x = cell.vertex(v)[d];
+            is_box = is_box && (std::abs(x - box.lower_bound(d)) <= tolerance ||
+                                std::abs(x - box.upper_bound(d)) <= tolerance);
+          }
+      is_box = is_box &&
+               std::abs(cell.measure() - box.volume()) <= 1e-10 * box.volume();
+      if (!is_box)
+        {
+          std::ostringstream where;
+          where << "cell " << cell.id() << " with vertices";
+          for (const unsigned int v : cell.vertex_indices())
+            where << " (" << cell.vertex(v) << ")";
+          AssertThrow(false,
+                      ExcMessage(
+                        "PeriDEAL places PD nodes at the centres of cells "
+                        "that are axis-aligned boxes (partial volumes are "
+                        "computed for boxes), but the mesh contains a " +
+                        where.str() +
+                        ". Use a Cartesian mesh: every cell a box with "
+                        "faces normal to the coordinate axes."));
+        }
+      return box;
+    }
+
+
+    template BoundingBox<2>
+    cell_box(const CellAccessor<2> &);
+    template BoundingBox<3>
+    cell_box(const CellAccessor<3> &);
 
 
     template <int dim>
@@ -93,7 +101,7 @@ namespace PeriDEAL
         if (cell->is_locally_owned())
           {
             Node<dim> node;
-            node.cell     = box_of_cell<dim>(cell);
+            node.cell     = cell_box(*cell);
             node.location = node.cell.center();
             cell->get_dof_indices(dof_indices);
             for (unsigned int i = 0; i < dim; ++i)
@@ -108,27 +116,59 @@ namespace PeriDEAL
       if (Utilities::MPI::n_mpi_processes(comm) > 1)
         {
           // A node j is needed on process r if its cell comes within the
-          // coupling range of a node owned by r; r's nodes lie in r's boxes.
-          const std::vector<BoundingBox<dim>> local_boxes =
-            GridTools::compute_mesh_predicate_bounding_box(
-              dof_handler.get_triangulation(),
-              IteratorFilters::LocallyOwnedCell(),
-              /*refinement_level*/ 1,
-              /*allow_merge*/ true,
-              /*max_boxes*/ 8);
+          // coupling range of a node owned by r. Each process describes
+          // where its nodes are by the bounding boxes of its cells binned on
+          // a grid of the coupling range (few boxes, tight around the
+          // partition, whatever the mesh hierarchy), and gathers everyone's.
+          const double bin = std::max(coupling_range, local_max_diameter);
+          std::map<std::array<long, dim>, BoundingBox<dim>> bins;
+          for (unsigned int i = 0; i < n_owned_nodes; ++i)
+            {
+              std::array<long, dim> key;
+              for (unsigned int d = 0; d < dim; ++d)
+                key[d] =
+                  static_cast<long>(std::floor(all_nodes[i].location[d] / bin));
+              const auto it = bins.find(key);
+              if (it == bins.end())
+                bins.emplace(key, all_nodes[i].cell);
+              else
+                it->second.merge_with(all_nodes[i].cell);
+            }
+          std::vector<BoundingBox<dim>> local_boxes;
+          for (const auto &entry : bins)
+            local_boxes.push_back(entry.second);
           const auto all_boxes = Utilities::MPI::all_gather(comm, local_boxes);
-          const double range2  = coupling_range * coupling_range;
 
-          std::map<unsigned int, std::vector<Node<dim>>> to_send;
+          // The other processes' boxes in an R-tree, searched with each
+          // owned cell grown by the coupling range, then checked exactly.
+          std::vector<std::pair<BoundingBox<dim>, unsigned int>> remote;
           for (unsigned int r = 0; r < all_boxes.size(); ++r)
             if (r != rank)
-              for (unsigned int i = 0; i < n_owned_nodes; ++i)
-                for (const auto &box : all_boxes[r])
-                  if (box_distance_squared(box, all_nodes[i].cell) <= range2)
-                    {
-                      to_send[r].push_back(all_nodes[i]);
-                      break;
-                    }
+              for (const auto &box : all_boxes[r])
+                remote.emplace_back(box, r);
+          const auto   tree   = pack_rtree(remote);
+          const double range2 = coupling_range * coupling_range;
+
+          std::map<unsigned int, std::vector<Node<dim>>>         to_send;
+          std::vector<std::pair<BoundingBox<dim>, unsigned int>> found;
+          std::vector<unsigned int>                              targets;
+          for (unsigned int i = 0; i < n_owned_nodes; ++i)
+            {
+              BoundingBox<dim> search = all_nodes[i].cell;
+              search.extend(coupling_range);
+              found.clear();
+              tree.query(boost::geometry::index::intersects(search),
+                         std::back_inserter(found));
+              targets.clear();
+              for (const auto &[box, r] : found)
+                if (box_distance_squared(box, all_nodes[i].cell) <= range2)
+                  targets.push_back(r);
+              std::sort(targets.begin(), targets.end());
+              targets.erase(std::unique(targets.begin(), targets.end()),
+                            targets.end());
+              for (const unsigned int r : targets)
+                to_send[r].push_back(all_nodes[i]);
+            }
           const auto received = Utilities::MPI::some_to_some(comm, to_send);
 
           std::vector<Node<dim>> ghosts;

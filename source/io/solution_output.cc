@@ -73,10 +73,11 @@ namespace PeriDEAL
       MPI_Barrier(comm);
 
       // Owned nodes follow the locally owned active cells in order.
-      const auto        &tria = dof_handler.get_triangulation();
-      std::vector<Vector<float>> cell_data(
-        fields.size(), Vector<float>(tria.n_active_cells()));
-      unsigned int node = 0;
+      const auto                &tria = dof_handler.get_triangulation();
+      std::vector<Vector<float>> cell_data(fields.size(),
+                                           Vector<float>(
+                                             tria.n_active_cells()));
+      unsigned int               node = 0;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -89,9 +90,11 @@ namespace PeriDEAL
       DataOut<dim> data_out;
       data_out.attach_dof_handler(dof_handler);
       const std::vector<std::string> names(dim, "displacement");
-      const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-        interpretation(dim,
-                       DataComponentInterpretation::component_is_part_of_vector);
+      const std::vector<
+        DataComponentInterpretation::DataComponentInterpretation>
+        interpretation(
+          dim,
+          DataComponentInterpretation::component_is_part_of_vector);
       data_out.add_data_vector(displacement,
                                names,
                                DataOut<dim>::type_dof_data,
@@ -101,8 +104,10 @@ namespace PeriDEAL
                                  fields[f].name,
                                  DataOut<dim>::type_cell_data);
       data_out.build_patches();
-      return data_out.write_vtu_with_pvtu_record(
-        output_directory + "/", base_name, 0, comm);
+      return data_out.write_vtu_with_pvtu_record(output_directory + "/",
+                                                 base_name,
+                                                 0,
+                                                 comm);
     }
 
 

@@ -206,11 +206,11 @@ namespace PeriDEAL
             for (const auto dof : node_set[k].dofs)
               if (constraints->is_constrained(dof))
                 {
-                  AssertThrow(
-                    constraints->get_constraint_entries(dof)->empty(),
-                    ExcMessage("The PD operator eliminates only prescribed "
-                               "values u_k = g_k, not constraints that "
-                               "couple DoFs."));
+                  AssertThrow(constraints->get_constraint_entries(dof)->empty(),
+                              ExcMessage(
+                                "The PD operator eliminates only prescribed "
+                                "values u_k = g_k, not constraints that "
+                                "couple DoFs."));
                 }
               else
                 all = false;
@@ -232,7 +232,7 @@ namespace PeriDEAL
       std::vector<Tensor<2, dim>> block(n);
       std::vector<bool>           touched(n, false);
       std::vector<unsigned int>   columns;
-      auto touch = [&](const unsigned int k) {
+      auto                        touch = [&](const unsigned int k) {
         if (!touched[k])
           {
             touched[k] = true;
@@ -361,8 +361,8 @@ namespace PeriDEAL
                   {
                     const auto col = node_set[k].dofs[c];
                     if (is_constrained(col))
-                      moved += block[k][r][c] *
-                               constraints->get_inhomogeneity(col);
+                      moved +=
+                        block[k][r][c] * constraints->get_inhomogeneity(col);
                     else
                       {
                         cols.push_back(col);

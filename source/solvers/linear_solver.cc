@@ -106,7 +106,7 @@ namespace PeriDEAL
         {
           // A = 0 right-hand side: the solution is zero, and a relative
           // residual is meaningless.
-          solution = 0;
+          solution      = 0;
           report.method = method_name;
           return report;
         }
@@ -114,9 +114,10 @@ namespace PeriDEAL
       if (method_name == "direct")
         {
           report.method = "direct (Amesos " + direct_package + ")";
-          SolverControl control(1, 0);
+          SolverControl                                  control(1, 0);
           TrilinosWrappers::SolverDirect::AdditionalData data(
-            false, direct_package == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu");
+            false,
+            direct_package == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu");
           TrilinosWrappers::SolverDirect solver(control, data);
           solver.solve(matrix, solution, rhs);
           report.iterations = 1;
@@ -151,7 +152,8 @@ namespace PeriDEAL
             }
           else if (preconditioner == "SSOR")
             {
-              auto ssor = std::make_unique<TrilinosWrappers::PreconditionSSOR>();
+              auto ssor =
+                std::make_unique<TrilinosWrappers::PreconditionSSOR>();
               ssor->initialize(matrix);
               precondition = std::move(ssor);
             }
@@ -172,7 +174,8 @@ namespace PeriDEAL
                   TrilinosWrappers::SolverGMRES solver(
                     control,
                     TrilinosWrappers::SolverGMRES::AdditionalData(
-                      false, restart_length));
+                      false,
+                      restart_length));
                   solver.solve(matrix, solution, rhs, *precondition);
                 }
               else

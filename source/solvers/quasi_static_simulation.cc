@@ -200,8 +200,8 @@ namespace PeriDEAL
       AssertThrow(prm.get_integer("Dimension") == dim,
                   ExcInvalidInput("Dimension",
                                   prm.get("Dimension"),
-                                  "this simulation is " +
-                                    std::to_string(dim) + "D"));
+                                  "this simulation is " + std::to_string(dim) +
+                                    "D"));
 
       prm.enter_subsection("Geometry");
       {
@@ -278,8 +278,7 @@ namespace PeriDEAL
           prm.get_bool("Compare with analytical solution");
         prm.enter_subsection("Displacement");
         const std::string expression = prm.get("Function expression");
-        AssertThrow(Utilities::split_string_list(expression, ';').size() ==
-                      dim,
+        AssertThrow(Utilities::split_string_list(expression, ';').size() == dim,
                     ExcInvalidInput(
                       "Analytical solution/Displacement/Function expression",
                       expression,
@@ -309,8 +308,11 @@ namespace PeriDEAL
     {
       TimerOutput::Scope scope(timer, "mesh");
       if (mesh_kind == "subdivided box")
-        GridGenerator::subdivided_hyper_rectangle(
-          triangulation, subdivisions, lower_corner, upper_corner, true);
+        GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                                  subdivisions,
+                                                  lower_corner,
+                                                  upper_corner,
+                                                  true);
       else
         {
           GridIn<dim> grid_in;
@@ -330,8 +332,11 @@ namespace PeriDEAL
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
+            // Every cell must be an axis-aligned box (a clear error
+            // otherwise), before any size is derived from it.
+            const BoundingBox<dim> box = Discretization::cell_box(*cell);
             for (unsigned int d = 0; d < dim; ++d)
-              h = std::min(h, cell->extent_in_direction(d));
+              h = std::min(h, box.side_length(d));
             for (const unsigned int v : cell->vertex_indices())
               for (unsigned int d = 0; d < dim; ++d)
                 {
@@ -339,7 +344,7 @@ namespace PeriDEAL
                   upper[d] = std::max(upper[d], cell->vertex(v)[d]);
                 }
           }
-      h                     = Utilities::MPI::min(h, communicator);
+      h                      = Utilities::MPI::min(h, communicator);
       double smallest_extent = std::numeric_limits<double>::max();
       for (unsigned int d = 0; d < dim; ++d)
         smallest_extent =
@@ -354,27 +359,27 @@ namespace PeriDEAL
           horizon = horizon_length;
           m_ratio = horizon / h;
         }
-      AssertThrow(horizon < smallest_extent,
-                  ExcInvalidInput(
-                    horizon_specification == "m-ratio" ? "Horizon/m-ratio" :
-                                                         "Horizon/Length",
-                    horizon_specification == "m-ratio" ?
-                      to_string(m_ratio) :
-                      to_string(horizon_length),
-                    "the horizon " + to_string(horizon) +
-                      " is not smaller than the smallest extent of the "
-                      "body, " +
-                      to_string(smallest_extent) +
-                      "; use a smaller horizon or a larger body"));
+      AssertThrow(
+        horizon < smallest_extent,
+        ExcInvalidInput(horizon_specification == "m-ratio" ? "Horizon/m-ratio" :
+                                                             "Horizon/Length",
+                        horizon_specification == "m-ratio" ?
+                          to_string(m_ratio) :
+                          to_string(horizon_length),
+                        "the horizon " + to_string(horizon) +
+                          " is not smaller than the smallest extent of the "
+                          "body, " +
+                          to_string(smallest_extent) +
+                          "; use a smaller horizon or a larger body"));
 
       summary.h       = h;
       summary.horizon = horizon;
       summary.n_ranks = Utilities::MPI::n_mpi_processes(communicator);
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << wall_clock.wall_time() << " s] mesh: "
-            << triangulation.n_global_active_cells() << " cells, h = "
-            << std::defaultfloat << h << ", horizon = " << horizon
-            << " (m-ratio " << m_ratio << "), "
+            << wall_clock.wall_time()
+            << " s] mesh: " << triangulation.n_global_active_cells()
+            << " cells, h = " << std::defaultfloat << h
+            << ", horizon = " << horizon << " (m-ratio " << m_ratio << "), "
             << Utilities::MPI::n_mpi_processes(communicator)
             << " MPI process(es)" << std::endl;
     }
@@ -452,8 +457,8 @@ namespace PeriDEAL
             << wall_clock.wall_time()
             << " s] assembled: " << dof_handler.n_dofs() << " DoFs, "
             << summary.n_nonzeros << " nonzeros, "
-            << summary.n_constrained_nodes
-            << " nodes in Dirichlet layers" << std::endl;
+            << summary.n_constrained_nodes << " nodes in Dirichlet layers"
+            << std::endl;
 
       // Symmetry of the system, measured: x^T A y against y^T A x.
       TrilinosWrappers::MPI::Vector x(owned, communicator),
@@ -469,18 +474,20 @@ namespace PeriDEAL
       system_matrix.vmult(ax, x);
       system_matrix.vmult(ay, y);
       const double asymmetry = std::abs(y * ax - x * ay);
-      const bool   symmetric =
-        asymmetry <= 1e-12 * ax.l2_norm() * y.l2_norm();
+      const bool   symmetric = asymmetry <= 1e-12 * ax.l2_norm() * y.l2_norm();
 
       TrilinosWrappers::MPI::Vector solution(owned, communicator);
       {
-        TimerOutput::Scope               scope(timer, "solve");
-        std::vector<std::vector<bool>>   constant_modes;
+        TimerOutput::Scope             scope(timer, "solve");
+        std::vector<std::vector<bool>> constant_modes;
         DoFTools::extract_constant_modes(dof_handler,
                                          ComponentMask(dim, true),
                                          constant_modes);
-        summary.solver = linear_solver.solve(
-          system_matrix, solution, system_rhs, constant_modes, symmetric);
+        summary.solver = linear_solver.solve(system_matrix,
+                                             solution,
+                                             system_rhs,
+                                             constant_modes,
+                                             symmetric);
         constraints.distribute(solution);
       }
       displacement.reinit(owned, relevant, communicator);
@@ -519,13 +526,13 @@ namespace PeriDEAL
       std::vector<double> dilatation;
       pd_operator.compute_dilatation(displacement, dilatation);
 
-      const unsigned int        n_owned = nodes.n_owned();
-      std::vector<IO::NodeField> fields = {{"dilatation", {}},
-                                           {"weighted_volume", {}},
-                                           {"node_volume", {}},
-                                           {"n_neighbors", {}},
-                                           {"mpi_rank", {}},
-                                           {"constrained", {}}};
+      const unsigned int         n_owned = nodes.n_owned();
+      std::vector<IO::NodeField> fields  = {{"dilatation", {}},
+                                            {"weighted_volume", {}},
+                                            {"node_volume", {}},
+                                            {"n_neighbors", {}},
+                                            {"mpi_rank", {}},
+                                            {"constrained", {}}};
       const double rank = Utilities::MPI::this_mpi_process(communicator);
       for (unsigned int i = 0; i < n_owned; ++i)
         {
@@ -560,18 +567,18 @@ namespace PeriDEAL
               u_max = std::max(u_max, std::sqrt(u));
               error.values.push_back(std::sqrt(e));
             }
-          e2    = Utilities::MPI::sum(e2, communicator);
-          u2    = Utilities::MPI::sum(u2, communicator);
-          e_max = Utilities::MPI::max(e_max, communicator);
-          u_max = Utilities::MPI::max(u_max, communicator);
+          e2                 = Utilities::MPI::sum(e2, communicator);
+          u2                 = Utilities::MPI::sum(u2, communicator);
+          e_max              = Utilities::MPI::max(e_max, communicator);
+          u_max              = Utilities::MPI::max(u_max, communicator);
           summary.has_errors = true;
           summary.errors.l2  = u2 > 0 ? std::sqrt(e2 / u2) : std::sqrt(e2);
           summary.errors.max = u_max > 0 ? e_max / u_max : e_max;
           fields.push_back(error);
           pcout << "           error against the analytical solution: "
                 << "relative L2 " << std::scientific << std::setprecision(3)
-                << summary.errors.l2 << ", relative max "
-                << summary.errors.max << std::defaultfloat << std::endl;
+                << summary.errors.l2 << ", relative max " << summary.errors.max
+                << std::defaultfloat << std::endl;
         }
 
       TimerOutput::Scope scope(timer, "output");
@@ -614,10 +621,11 @@ namespace PeriDEAL
         {
           const bool    is_new = !std::filesystem::exists(summary_file);
           std::ofstream csv(summary_file, std::ios::app);
-          AssertThrow(csv, ExcInvalidInput("Output/Summary file",
-                                           summary_file,
-                                           "the file cannot be written; "
-                                           "check the directory"));
+          AssertThrow(csv,
+                      ExcInvalidInput("Output/Summary file",
+                                      summary_file,
+                                      "the file cannot be written; "
+                                      "check the directory"));
           if (is_new)
             csv << "dim,model,algorithm,n_ranks,n_nodes,n_constrained_nodes,"
                    "h,horizon,m_ratio,n_bonds,nnz,solver,iterations,"
@@ -629,22 +637,20 @@ namespace PeriDEAL
             const auto it = summary.seconds.find(phase);
             return it == summary.seconds.end() ? 0. : it->second;
           };
-          csv << std::setprecision(10) << dim << ",\"" << model_name
-              << "\",\"" << algorithm_name << "\"," << summary.n_ranks << ','
+          csv << std::setprecision(10) << dim << ",\"" << model_name << "\",\""
+              << algorithm_name << "\"," << summary.n_ranks << ','
               << summary.n_nodes << ',' << summary.n_constrained_nodes << ','
               << h << ',' << horizon << ',' << horizon / h << ','
               << summary.n_bonds << ',' << summary.n_nonzeros << ",\""
               << summary.solver.method << "\"," << summary.solver.iterations
               << ',' << summary.solver.relative_residual << ','
               << summary.equilibrium_residual << ','
-              << (summary.has_errors ? to_string(summary.errors.l2) : "")
-              << ','
+              << (summary.has_errors ? to_string(summary.errors.l2) : "") << ','
               << (summary.has_errors ? to_string(summary.errors.max) : "")
-              << ',' << t("mesh") << ',' << t("nodes and ghost exchange")
-              << ',' << t("neighbour search and weights") << ','
-              << t("operator setup") << ',' << t("assembly") << ','
-              << t("solve") << ',' << t("output") << ',' << t("total") << ','
-              << summary.peak_memory_mb << '\n';
+              << ',' << t("mesh") << ',' << t("nodes and ghost exchange") << ','
+              << t("neighbour search and weights") << ',' << t("operator setup")
+              << ',' << t("assembly") << ',' << t("solve") << ',' << t("output")
+              << ',' << t("total") << ',' << summary.peak_memory_mb << '\n';
         }
       return summary;
     }

@@ -227,7 +227,7 @@ namespace PeriDEAL
 #define PERIDEAL_REGISTER_CLASS(Interface, Class, name, description)           \
   namespace                                                                    \
   {                                                                            \
-    const bool PERIDEAL_CONCAT(perideal_registered_, __COUNTER__) =               \
+    const bool PERIDEAL_CONCAT(perideal_registered_, __COUNTER__) =            \
       ::PeriDEAL::PluginRegistry<Interface>::register_class(                   \
         name,                                                                  \
         description,                                                           \

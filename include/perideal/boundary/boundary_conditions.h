@@ -90,7 +90,7 @@ namespace PeriDEAL
        */
       unsigned int
       n_constrained_nodes(const Discretization::NodeSet<dim> &nodes,
-                          const AffineConstraints<double>    &constraints) const;
+                          const AffineConstraints<double> &constraints) const;
 
     private:
       std::vector<types::boundary_id> dirichlet_ids;

@@ -8,6 +8,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/grid/tria_accessor.h>
+
 #include <array>
 #include <vector>
 
@@ -54,6 +56,16 @@ namespace PeriDEAL
         ar &location &cell &dofs &owner;
       }
     };
+
+    /**
+     * The axis-aligned box that the cell @p cell is, after checking that it
+     * is one: every vertex a corner of its bounding box, and the same
+     * measure (to 1e-10 relative). Otherwise throws an error that names the
+     * cell and its vertices and asks for a Cartesian mesh.
+     */
+    template <int dim>
+    BoundingBox<dim>
+    cell_box(const CellAccessor<dim> &cell);
 
     /**
      * The PD nodes a process works with: those of its locally owned cells,

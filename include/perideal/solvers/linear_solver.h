@@ -62,24 +62,24 @@ namespace PeriDEAL
        * non-symmetric matrix is refused.
        */
       SolverReport
-      solve(const TrilinosWrappers::SparseMatrix     &matrix,
-            TrilinosWrappers::MPI::Vector            &solution,
-            const TrilinosWrappers::MPI::Vector      &rhs,
-            const std::vector<std::vector<bool>>     &constant_modes,
-            const bool                                symmetric) const;
+      solve(const TrilinosWrappers::SparseMatrix &matrix,
+            TrilinosWrappers::MPI::Vector        &solution,
+            const TrilinosWrappers::MPI::Vector  &rhs,
+            const std::vector<std::vector<bool>> &constant_modes,
+            const bool                            symmetric) const;
 
       const std::string &
       method() const;
 
     private:
-      std::string  method_name      = "direct";
-      std::string  direct_package   = "MUMPS";
-      std::string  preconditioner   = "AMG";
-      double       tolerance        = 1e-10;
-      unsigned int max_iterations   = 10000;
-      unsigned int restart_length   = 200;
-      unsigned int smoother_sweeps  = 2;
-      double       aggregation      = 1e-4;
+      std::string  method_name     = "direct";
+      std::string  direct_package  = "MUMPS";
+      std::string  preconditioner  = "AMG";
+      double       tolerance       = 1e-10;
+      unsigned int max_iterations  = 10000;
+      unsigned int restart_length  = 200;
+      unsigned int smoother_sweeps = 2;
+      double       aggregation     = 1e-4;
     };
   } // namespace Solvers
 } // namespace PeriDEAL

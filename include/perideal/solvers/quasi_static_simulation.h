@@ -56,15 +56,15 @@ namespace PeriDEAL
      */
     struct RunSummary
     {
-      unsigned int                  n_ranks = 1;
-      types::global_dof_index       n_nodes = 0;
+      unsigned int                  n_ranks             = 1;
+      types::global_dof_index       n_nodes             = 0;
       types::global_dof_index       n_constrained_nodes = 0;
       double                        h = 0, horizon = 0;
-      std::size_t                   n_bonds = 0;
+      std::size_t                   n_bonds    = 0;
       std::size_t                   n_nonzeros = 0;
       SolverReport                  solver;
       double                        equilibrium_residual = 0;
-      bool                          has_errors = false;
+      bool                          has_errors           = false;
       ErrorNorms                    errors;
       std::map<std::string, double> seconds;
       double                        peak_memory_mb = 0;

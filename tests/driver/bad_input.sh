@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Usage: bad_input.sh PERIDEAL TEST_SOURCE_DIR
+#
+# Bad input to the perideal driver: each case must exit non-zero, print a
+# message that names the offending parameter (and its value), and leave no
+# output behind.
+set -u
+perideal="$1"; source_dir="$2"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+work="$(pwd)/bad_input"
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+
+# A valid small 2D problem; each case edits one line of it.
+cat > base.prm <<'PRM'
+set Dimension = 2
+subsection Geometry
+  set Lower corner = 0, 0
+  set Upper corner = 1, 1
+  set Subdivisions = 10, 10
+end
+subsection Horizon
+  set m-ratio = 3
+end
+subsection Material model
+  set Model = linear peridynamic solid
+  subsection linear peridynamic solid
+    set Poisson's ratio = 0.25
+  end
+end
+subsection Boundary conditions
+  set Dirichlet boundary ids = 0, 1, 2, 3
+  subsection Dirichlet displacement
+    set Variable names      = x,y
+    set Function expression = 1e-3*x; 0
+  end
+end
+subsection Output
+  set Directory = out
+end
+PRM
+"$perideal" base.prm > base.log 2>&1 || { cat base.log; fail "the valid base input failed"; }
+[ -f out/solution_0.pvtu ] || fail "the valid base input wrote no out/solution_0.pvtu"
+rm -rf out
+
+# expect_error "sed expression" "substring of the message" [nprocs]
+expect_error() {
+  local edit="$1" expected="$2" nprocs="${3:-1}" out rc
+  sed -e "$edit" base.prm > case.prm
+  cmp -s base.prm case.prm && { fail "edit '$edit' changed nothing"; return; }
+  if [ "$nprocs" -eq 1 ]; then
+    out=$("$perideal" case.prm 2>&1); rc=$?
+  else
+    out=$(mpirun --oversubscribe -np "$nprocs" "$perideal" case.prm 2>&1); rc=$?
+  fi
+  [ "$rc" -ne 0 ] || fail "'$edit' exited with 0"
+  grep -qF -- "$expected" <<<"$out" || fail "'$edit': message lacks '$expected': $out"
+  [ ! -e out ] || { fail "'$edit' left output behind"; rm -rf out; }
+}
+
+expect_error 's/set m-ratio = 3/set m-ratio = 0/' \
+  "Invalid value '0' for the parameter 'Horizon/m-ratio'"
+expect_error 's/set m-ratio = 3/set m-ratio = -2/' \
+  "Invalid value '-2' for the parameter 'Horizon/m-ratio'" 2
+expect_error 's/set m-ratio = 3/set m-ratio = 12/' \
+  "the horizon 1.2 is not smaller than the smallest extent of the body, 1"
+expect_error 's/set m-ratio = 3/set m-ration = 3/' \
+  "No entry with name <m-ration> was declared"
+expect_error 's/set Subdivisions = 10, 10/set Subdivisions = 10, 10, 10/' \
+  "Subdivisions"
+expect_error "s/set Poisson's ratio = 0.25/set Poisson's ratio = 0.5/" \
+  "Invalid value '0.5' for the parameter 'Poisson's ratio'"
+expect_error "s/set Poisson's ratio = 0.25/set Poisson's ratio = -1.5/" \
+  "Invalid value '-1.5' for the parameter 'Poisson's ratio'" 2
+expect_error 's/set Model = linear peridynamic solid/set Model = linear peridynamic solidd/' \
+  "linear peridynamic solidd"
+expect_error "s/set Model = linear peridynamic solid/set Model = bond-based/; s/subsection linear peridynamic solid/subsection bond-based/; s/set Poisson's ratio = 0.25/set Poisson's ratio = 0.3/" \
+  "Invalid value '0.3' for the parameter 'Poisson's ratio'"
+expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0, 7/' \
+  "boundary id 7 does not occur in the mesh"
+expect_error 's/set Function expression = 1e-3\*x; 0/set Function expression = 1e-3*x/' \
+  "Boundary conditions/Dirichlet displacement/Function expression"
+expect_error 's/set Lower corner = 0, 0/set Lower corner = 0, 0\n  set Mesh = file\n  set Mesh file = no-such-mesh.msh/' \
+  "Invalid value 'no-such-mesh.msh' for the parameter 'Geometry/Mesh file'"
+expect_error "s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/skewed_quad.inp|" \
+  "Use a Cartesian mesh"
+expect_error 's/set Dimension = 2/set Dimension = 4/' "Dimension"
+
+# No parameter file, an unreadable one, unknown options.
+out=$("$perideal" 2>&1); [ $? -ne 0 ] || fail "no argument exited with 0"
+grep -qF "Usage: perideal" <<<"$out" || fail "no usage without arguments"
+out=$("$perideal" no-such-file.prm 2>&1); [ $? -ne 0 ] || fail "missing file exited with 0"
+grep -qF "Cannot read the parameter file 'no-such-file.prm'" <<<"$out" || fail "missing .prm: $out"
+out=$("$perideal" --frobnicate 2>&1); [ $? -ne 0 ] || fail "unknown option exited with 0"
+out=$("$perideal" --print-parameters 2 2>&1) || fail "--print-parameters failed"
+for entry in "set Dimension" "subsection Horizon" "set m-ratio" "subsection linear peridynamic solid" \
+             "set Dirichlet layer thickness" "set Preconditioner" "set Summary file"; do
+  grep -qF "$entry" <<<"$out" || fail "--print-parameters lacks '$entry'"
+done
+
+if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi
