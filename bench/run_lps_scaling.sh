@@ -10,31 +10,13 @@
 # memory summed over processes, errors), DIR/logs/, and with matplotlib
 # DIR/time_vs_size.png (time of each phase and peak memory against the
 # number of nodes). DIR defaults to results/lps_scaling. SIZES="16 24"
-# overrides the cells per direction.
+# overrides the cells per direction. Fails unless 1 and 2 processes give the
+# same error.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-quick=0
-out=results/lps_scaling
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --quick) quick=1 ;;
-    --output-dir) out="$2"; shift ;;
-    *) echo "usage: bash bench/run_lps_scaling.sh [--quick] [--output-dir DIR]" >&2; exit 2 ;;
-  esac
-  shift
-done
-mkdir -p "$out/logs"
-out=$(cd "$out" && pwd)
-
-build="${BUILD_DIR:-build}"
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
-fi
-# Under ctest the build is there already (and must not run twice at once).
-[ "${PERIDEAL_SKIP_BUILD:-0}" = 1 ] || cmake --build "$build" -j2 --target perideal > /dev/null
-perideal="$(cd "$build" && pwd)/bin/perideal"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source bench/driver_study.sh
+driver_study_setup results/lps_scaling "$@"
 
 if [ $quick -eq 1 ]; then sizes="${SIZES:-8 10}"; else sizes="${SIZES:-10 14 20 26 32 38}"; fi
 
@@ -60,8 +42,12 @@ for n in $sizes; do
 done
 echo "wrote $csv"
 
-if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
-  /usr/bin/python3 bench/plot_lps_scaling.py "$csv" "$out"
-else
-  echo "matplotlib is not importable by /usr/bin/python3: CSV written, plots skipped." >&2
-fi
+plot_if_possible bench/plot_lps_scaling.py "$csv" "$out"
+
+# 1 and 2 processes must give the same answer: relative L2 errors equal to
+# 1e-8 (CG stops at 1e-10; the partition changes only round-off).
+awk -F, 'NR > 1 { e[$5 "," $4] = $16; n[$5] = 1 }
+         END { for (k in n) { a = e[k ",1"]; b = e[k ",2"];
+                 if (a == "" || b == "" || (a - b > 1e-8 * a) || (b - a > 1e-8 * a)) {
+                   print "1 and 2 processes differ for N = " k ": " a " vs " b; bad = 1 } }
+               exit bad }' "$csv"

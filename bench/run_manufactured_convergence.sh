@@ -22,26 +22,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-quick=0
-out=results/manufactured_convergence
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --quick) quick=1 ;;
-    --output-dir) out="$2"; shift ;;
-    *) echo "usage: bash bench/run_manufactured_convergence.sh [--quick] [--output-dir DIR]" >&2; exit 2 ;;
-  esac
-  shift
-done
-mkdir -p "$out/logs"
-out=$(cd "$out" && pwd)
-
-build="${BUILD_DIR:-build}"
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
-fi
-# Under ctest the build is there already (and must not run twice at once).
-[ "${PERIDEAL_SKIP_BUILD:-0}" = 1 ] || cmake --build "$build" -j2 --target perideal > /dev/null
-perideal="$(cd "$build" && pwd)/bin/perideal"
+source bench/driver_study.sh
+driver_study_setup results/manufactured_convergence "$@"
 
 # Studies: "name dim field horizon-spec value N..."
 if [ $quick -eq 1 ]; then
@@ -161,12 +143,7 @@ for study in "${studies[@]}"; do
 done
 echo "wrote $csv"
 
-if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
-  /usr/bin/python3 bench/plot_manufactured_convergence.py "$csv" "$out"
-else
-  echo "matplotlib is not importable by /usr/bin/python3 (Debian package" \
-       "python3-matplotlib): CSV written, plots skipped." >&2
-fi
+plot_if_possible bench/plot_manufactured_convergence.py "$csv" "$out"
 
 # The patch tests must be exact to round-off.
 awk -F, 'NR > 1 && $2 == "linear" && ($18 > 1e-11 || $19 > 1e-11) { bad = 1;

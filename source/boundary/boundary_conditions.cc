@@ -79,6 +79,21 @@ namespace PeriDEAL
         return d2;
       }
 
+      // Whether face f of cell lies on a boundary with one of the (sorted)
+      // ids.
+      template <class CellIterator>
+      bool
+      on_boundary(const CellIterator                    &cell,
+                  const unsigned int                     f,
+                  const std::vector<types::boundary_id> &ids)
+      {
+        return cell->at_boundary(f) &&
+               std::binary_search(ids.begin(),
+                                  ids.end(),
+                                  cell->face(f)->boundary_id());
+      }
+
+
       template <int dim>
       BoundingBox<dim>
       face_box(const typename DoFHandler<dim>::active_cell_iterator &cell,
@@ -195,18 +210,14 @@ namespace PeriDEAL
            {std::make_pair(&dirichlet_ids, "Dirichlet boundary ids"),
             std::make_pair(&traction_ids, "Traction boundary ids")})
         for (const auto id : *ids)
-          {
-            std::vector<types::boundary_id> sorted(mesh_ids.begin(),
-                                                   mesh_ids.end());
-            AssertThrow(
-              std::find(mesh_ids.begin(), mesh_ids.end(), id) != mesh_ids.end(),
-              ExcInvalidInput(std::string("Boundary conditions/") + entry,
-                              ids_to_string(*ids),
-                              "boundary id " + std::to_string(id) +
-                                " does not occur in the mesh, "
-                                "whose boundary ids are " +
-                                ids_to_string(sorted)));
-          }
+          AssertThrow(
+            std::find(mesh_ids.begin(), mesh_ids.end(), id) != mesh_ids.end(),
+            ExcInvalidInput(std::string("Boundary conditions/") + entry,
+                            ids_to_string(*ids),
+                            "boundary id " + std::to_string(id) +
+                              " does not occur in the mesh, "
+                              "whose boundary ids are " +
+                              ids_to_string(mesh_ids)));
 
       if (dirichlet_ids.empty())
         {
@@ -220,10 +231,7 @@ namespace PeriDEAL
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int f : cell->face_indices())
-            if (cell->at_boundary(f) &&
-                std::binary_search(dirichlet_ids.begin(),
-                                   dirichlet_ids.end(),
-                                   cell->face(f)->boundary_id()))
+            if (on_boundary(cell, f, dirichlet_ids))
               local_faces.push_back(face_box<dim>(cell, f));
       std::vector<BoundingBox<dim>> faces;
       for (const auto &part : Utilities::MPI::all_gather(comm, local_faces))
@@ -234,13 +242,14 @@ namespace PeriDEAL
       // Nodes at exactly the layer thickness (horizons at half-integer
       // m-ratios) are free: a relative margin keeps that decision
       // independent of round-off in the node coordinates.
-      const double   limit = thickness * (1 - 1e-10);
-      Vector<double> g(dim);
+      const double                  limit = thickness * (1 - 1e-10);
+      Vector<double>                g(dim);
+      std::vector<BoundingBox<dim>> candidates;
       for (const auto &node : nodes.nodes())
         {
           BoundingBox<dim> search(std::make_pair(node.location, node.location));
           search.extend(thickness);
-          std::vector<BoundingBox<dim>> candidates;
+          candidates.clear();
           tree.query(boost::geometry::index::intersects(search),
                      std::back_inserter(candidates));
           bool inside = false;
@@ -319,10 +328,7 @@ namespace PeriDEAL
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (cell->is_locally_owned())
               for (const unsigned int f : cell->face_indices())
-                if (cell->at_boundary(f) &&
-                    std::binary_search(traction_ids.begin(),
-                                       traction_ids.end(),
-                                       cell->face(f)->boundary_id()))
+                if (on_boundary(cell, f, traction_ids))
                   {
                     cell->get_dof_indices(dofs);
                     traction->vector_value(cell->face(f)->center(), value);

@@ -193,29 +193,39 @@ namespace PeriDEAL
       const unsigned int n        = node_set.size();
 
       // Rows of constrained DoFs keep a diagonal entry; columns of
-      // constrained DoFs go to the right-hand side.
-      const bool with_constraints = (constraints != nullptr);
-      auto       is_constrained   = [&](const types::global_dof_index dof) {
-        return with_constraints && constraints->is_constrained(dof);
-      };
-      std::vector<bool> fully_constrained(n, false);
+      // constrained DoFs go to the right-hand side. Which components of each
+      // local node are prescribed, and to what, is looked up once here: the
+      // loops below touch every nonzero and must not search the constraints.
+      const bool          with_constraints = (constraints != nullptr);
+      std::vector<bool>   prescribed(with_constraints ? n * dim : 0, false);
+      std::vector<double> prescribed_value(prescribed.size(), 0.);
+      std::vector<bool>   fully_constrained(n, false);
       if (with_constraints)
         for (unsigned int k = 0; k < n; ++k)
           {
             bool all = true;
-            for (const auto dof : node_set[k].dofs)
-              if (constraints->is_constrained(dof))
-                {
-                  AssertThrow(constraints->get_constraint_entries(dof)->empty(),
-                              ExcMessage(
-                                "The PD operator eliminates only prescribed "
-                                "values u_k = g_k, not constraints that "
-                                "couple DoFs."));
-                }
-              else
-                all = false;
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                const auto dof = node_set[k].dofs[c];
+                if (constraints->is_constrained(dof))
+                  {
+                    AssertThrow(
+                      constraints->get_constraint_entries(dof)->empty(),
+                      ExcMessage("The PD operator eliminates only prescribed "
+                                 "values u_k = g_k, not constraints that "
+                                 "couple DoFs."));
+                    prescribed[k * dim + c] = true;
+                    prescribed_value[k * dim + c] =
+                      constraints->get_inhomogeneity(dof);
+                  }
+                else
+                  all = false;
+              }
             fully_constrained[k] = all;
           }
+      auto is_prescribed = [&](const unsigned int k, const unsigned int c) {
+        return with_constraints && prescribed[k * dim + c];
+      };
 
       // The dilatation of node j is theta_j = sum_k g_jk . (u_k - u_j) with
       // g_jk = theta_factor_jk n_jk; G_j = sum_k g_jk.
@@ -325,16 +335,19 @@ namespace PeriDEAL
             row_columns(i);
           cols.clear();
           for (const unsigned int k : columns)
-            for (const auto dof : node_set[k].dofs)
-              if (!is_constrained(dof))
-                cols.push_back(dof);
+            for (unsigned int c = 0; c < dim; ++c)
+              if (!is_prescribed(k, c))
+                cols.push_back(node_set[k].dofs[c]);
           clear_columns();
           std::sort(cols.begin(), cols.end());
-          for (const auto row : node_set[i].dofs)
-            if (is_constrained(row))
-              dsp.add(row, row);
-            else
-              dsp.add_entries(row, cols.begin(), cols.end(), true);
+          for (unsigned int r = 0; r < dim; ++r)
+            {
+              const auto row = node_set[i].dofs[r];
+              if (is_prescribed(i, r))
+                dsp.add(row, row);
+              else
+                dsp.add_entries(row, cols.begin(), cols.end(), true);
+            }
         }
       matrix.reinit(owned, owned, dsp, nodes->get_communicator());
 
@@ -346,11 +359,11 @@ namespace PeriDEAL
           for (unsigned int r = 0; r < dim; ++r)
             {
               const auto row = node_set[i].dofs[r];
-              if (is_constrained(row))
+              if (is_prescribed(i, r))
                 {
                   const double diagonal = constrained_diagonal(i, r);
                   matrix.add(row, row, diagonal);
-                  (*rhs)[row] += diagonal * constraints->get_inhomogeneity(row);
+                  (*rhs)[row] += diagonal * prescribed_value[i * dim + r];
                   continue;
                 }
               cols.clear();
@@ -359,13 +372,11 @@ namespace PeriDEAL
               for (const unsigned int k : columns)
                 for (unsigned int c = 0; c < dim; ++c)
                   {
-                    const auto col = node_set[k].dofs[c];
-                    if (is_constrained(col))
-                      moved +=
-                        block[k][r][c] * constraints->get_inhomogeneity(col);
+                    if (is_prescribed(k, c))
+                      moved += block[k][r][c] * prescribed_value[k * dim + c];
                     else
                       {
-                        cols.push_back(col);
+                        cols.push_back(node_set[k].dofs[c]);
                         values.push_back(-block[k][r][c]);
                       }
                   }
