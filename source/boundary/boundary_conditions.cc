@@ -154,6 +154,17 @@ namespace PeriDEAL
       prm.enter_subsection("Traction");
       Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
       prm.leave_subsection();
+      prm.declare_entry(
+        "Traction given as",
+        "vector",
+        Patterns::Selection("vector|stress tensor"),
+        "'vector': the traction is the function in 'Traction' (force per "
+        "area). 'stress tensor': the traction is tau(x) n, with tau the "
+        "function in 'Boundary stress' and n the face's outward normal, so "
+        "one input serves every face of a body.");
+      prm.enter_subsection("Boundary stress");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim * dim);
+      prm.leave_subsection();
     }
 
 
@@ -189,6 +200,116 @@ namespace PeriDEAL
         parse_vector_function<dim>(prm, "Dirichlet displacement");
       body_force = parse_vector_function<dim>(prm, "Body force");
       traction   = parse_vector_function<dim>(prm, "Traction");
+      traction_from_stress = prm.get("Traction given as") == "stress tensor";
+      prm.enter_subsection("Boundary stress");
+      {
+        const std::string expression = prm.get("Function expression");
+        const auto        n_given =
+          Utilities::split_string_list(expression, ';').size();
+        AssertThrow(n_given == dim * dim,
+                    ExcInvalidInput(
+                      "Boundary conditions/Boundary stress/Function "
+                      "expression",
+                      expression,
+                      "give " + std::to_string(dim * dim) +
+                        " expressions separated by ';', the stress tensor "
+                        "row by row (tau_11; tau_12; ...)"));
+        boundary_stress =
+          std::make_unique<Functions::ParsedFunction<dim>>(dim * dim);
+        boundary_stress->parse_parameters(prm);
+      }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::check_boundary_ids(
+      const Triangulation<dim> &triangulation) const
+    {
+      // Every id named in the input must exist in the mesh.
+      const auto mesh_ids = triangulation.get_boundary_ids();
+      for (const auto &[ids, entry] :
+           {std::make_pair(&dirichlet_ids, "Dirichlet boundary ids"),
+            std::make_pair(&traction_ids, "Traction boundary ids")})
+        for (const auto id : *ids)
+          AssertThrow(
+            std::find(mesh_ids.begin(), mesh_ids.end(), id) != mesh_ids.end(),
+            ExcInvalidInput(std::string("Boundary conditions/") + entry,
+                            ids_to_string(*ids),
+                            "boundary id " + std::to_string(id) +
+                              " does not occur in the mesh, "
+                              "whose boundary ids are " +
+                              ids_to_string(mesh_ids)));
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::is_dirichlet_boundary(
+      const types::boundary_id id) const
+    {
+      return std::binary_search(dirichlet_ids.begin(), dirichlet_ids.end(), id);
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::is_traction_boundary(
+      const types::boundary_id id) const
+    {
+      return std::binary_search(traction_ids.begin(), traction_ids.end(), id);
+    }
+
+
+    template <int dim>
+    const std::vector<bool> &
+    BoundaryConditions<dim>::dirichlet_component_mask() const
+    {
+      return dirichlet_components;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BoundaryConditions<dim>::dirichlet_value(const Point<dim> &p) const
+    {
+      Tensor<1, dim> result;
+      for (unsigned int c = 0; c < dim; ++c)
+        result[c] = dirichlet_displacement->value(p, c);
+      return result;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BoundaryConditions<dim>::body_force_value(const Point<dim> &p) const
+    {
+      Tensor<1, dim> result;
+      for (unsigned int c = 0; c < dim; ++c)
+        result[c] = body_force->value(p, c);
+      return result;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BoundaryConditions<dim>::traction_value(const Point<dim>     &p,
+                                            const Tensor<1, dim> &normal) const
+    {
+      Tensor<1, dim> result;
+      if (traction_from_stress)
+        {
+          Vector<double> tau(dim * dim);
+          boundary_stress->vector_value(p, tau);
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              result[i] += tau[i * dim + j] * normal[j];
+        }
+      else
+        for (unsigned int c = 0; c < dim; ++c)
+          result[c] = traction->value(p, c);
+      return result;
     }
 
 
@@ -204,20 +325,7 @@ namespace PeriDEAL
       constraints.clear();
       constraints.reinit(nodes.relevant_dofs());
 
-      // Every id named in the input must exist in the mesh.
-      const auto mesh_ids = dof_handler.get_triangulation().get_boundary_ids();
-      for (const auto &[ids, entry] :
-           {std::make_pair(&dirichlet_ids, "Dirichlet boundary ids"),
-            std::make_pair(&traction_ids, "Traction boundary ids")})
-        for (const auto id : *ids)
-          AssertThrow(
-            std::find(mesh_ids.begin(), mesh_ids.end(), id) != mesh_ids.end(),
-            ExcInvalidInput(std::string("Boundary conditions/") + entry,
-                            ids_to_string(*ids),
-                            "boundary id " + std::to_string(id) +
-                              " does not occur in the mesh, "
-                              "whose boundary ids are " +
-                              ids_to_string(mesh_ids)));
+      check_boundary_ids(dof_handler.get_triangulation());
 
       if (dirichlet_ids.empty())
         {
@@ -331,12 +439,22 @@ namespace PeriDEAL
                 if (on_boundary(cell, f, traction_ids))
                   {
                     cell->get_dof_indices(dofs);
-                    traction->vector_value(cell->face(f)->center(), value);
+                    // Outward normal of the axis-aligned face.
+                    const Tensor<1, dim> out =
+                      cell->face(f)->center() - cell->center();
+                    unsigned int axis = 0;
+                    for (unsigned int d = 1; d < dim; ++d)
+                      if (std::abs(out[d]) > std::abs(out[axis]))
+                        axis = d;
+                    Tensor<1, dim> normal;
+                    normal[axis] = out[axis] > 0 ? 1 : -1;
+                    const Tensor<1, dim> t =
+                      traction_value(cell->face(f)->center(), normal);
                     const double area = cell->face(f)->measure();
                     for (unsigned int k = 0; k < dofs.size(); ++k)
                       if (!constraints.is_constrained(dofs[k]))
                         load[dofs[k]] +=
-                          area * value[fe.system_to_component_index(k).first];
+                          area * t[fe.system_to_component_index(k).first];
                   }
         }
       load.compress(VectorOperation::add);

@@ -35,10 +35,15 @@ namespace PeriDEAL
       prm.declare_entry(
         "Preconditioner",
         "AMG",
-        Patterns::Selection("AMG|Jacobi|SSOR|none"),
+        Patterns::Selection("AMG|Jacobi|SSOR|ILU|none"),
         "Preconditioner of the Krylov methods: Trilinos ML algebraic "
         "multigrid (with the rigid translations as near-null space), point "
-        "Jacobi, SSOR, or none.");
+        "Jacobi, SSOR, incomplete LU (Ifpack ILU(k) on each process, k = "
+        "'ILU fill level'), or none.");
+      prm.declare_entry("ILU fill level",
+                        "1",
+                        Patterns::Integer(0, 10),
+                        "Level of fill k of the ILU(k) preconditioner.");
       prm.declare_entry("Relative tolerance",
                         "1e-10",
                         Patterns::Double(0),
@@ -72,6 +77,7 @@ namespace PeriDEAL
       method_name     = prm.get("Method");
       direct_package  = prm.get("Direct solver package");
       preconditioner  = prm.get("Preconditioner");
+      ilu_fill        = prm.get_integer("ILU fill level");
       tolerance       = prm.get_double("Relative tolerance");
       max_iterations  = prm.get_integer("Maximum iterations");
       restart_length  = prm.get_integer("GMRES restart length");
@@ -149,6 +155,14 @@ namespace PeriDEAL
                 std::make_unique<TrilinosWrappers::PreconditionJacobi>();
               jacobi->initialize(matrix);
               precondition = std::move(jacobi);
+            }
+          else if (preconditioner == "ILU")
+            {
+              auto ilu = std::make_unique<TrilinosWrappers::PreconditionILU>();
+              TrilinosWrappers::PreconditionILU::AdditionalData data;
+              data.ilu_fill = ilu_fill;
+              ilu->initialize(matrix, data);
+              precondition = std::move(ilu);
             }
           else if (preconditioner == "SSOR")
             {

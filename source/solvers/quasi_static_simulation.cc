@@ -130,6 +130,24 @@ namespace PeriDEAL
       }
       prm.leave_subsection();
 
+      prm.enter_subsection("Boundary treatment");
+      {
+        prm.declare_entry(
+          "Treatment",
+          "none",
+          Patterns::Selection(
+            Boundary::BoundaryTreatmentRegistry::pattern_string()),
+          "How the body's surface is treated: 'none' (incomplete "
+          "neighbourhoods, conditions on the outermost nodes), 'fictitious "
+          "layer' (completed neighbourhoods by Taylor extrapolation) or "
+          "'surface nodes' (fictitious layer plus nodes on the external "
+          "faces carrying the boundary conditions through the force flux; "
+          "Scabbia et al. 2023). The last two need a uniform grid of cubes "
+          "and give a non-symmetric matrix: use the direct solver or GMRES.");
+        Boundary::BoundaryTreatmentRegistry::declare_parameters(prm);
+      }
+      prm.leave_subsection();
+
       prm.enter_subsection("Partial volumes");
       {
         prm.declare_entry(
@@ -188,6 +206,15 @@ namespace PeriDEAL
           "CSV file to which one line per run is appended (sizes, solver, "
           "errors, phase timings, peak memory); the header is written when "
           "the file is new. Empty: no summary file.");
+        prm.declare_entry(
+          "Node data file",
+          "",
+          Patterns::FileName(),
+          "CSV file with one line per node (body nodes, and surface nodes "
+          "with the 'surface nodes' treatment): kind, position, computed "
+          "and analytical displacement, normalized error (Scabbia et al. "
+          "2023, Eq. 38). Written by process 0 for plots such as mid-plane "
+          "error maps. Empty: not written.");
       }
       prm.leave_subsection();
     }
@@ -272,6 +299,14 @@ namespace PeriDEAL
       boundary_conditions.parse_parameters(prm);
       prm.leave_subsection();
 
+      prm.enter_subsection("Boundary treatment");
+      treatment_name = prm.get("Treatment");
+      treatment =
+        Boundary::BoundaryTreatmentRegistry::create(treatment_name, prm);
+      prm.leave_subsection();
+      summary.treatment    = treatment_name;
+      summary.taylor_order = treatment->taylor_order();
+
       prm.enter_subsection("Analytical solution");
       {
         compare_with_analytical =
@@ -297,7 +332,8 @@ namespace PeriDEAL
 
       prm.enter_subsection("Output");
       output.parse_parameters(prm);
-      summary_file = prm.get("Summary file");
+      summary_file   = prm.get("Summary file");
+      node_data_file = prm.get("Node data file");
       prm.leave_subsection();
     }
 
@@ -405,6 +441,33 @@ namespace PeriDEAL
         nodes.reinit(dof_handler, coupling_range);
       }
       summary.n_nodes = triangulation.n_global_active_cells();
+      if (treatment->uses_fictitious_layer())
+        {
+          {
+            TimerOutput::Scope scope(timer, "operator setup");
+            layer_operator.reinit(dof_handler,
+                                  nodes,
+                                  *model,
+                                  horizon,
+                                  *algorithm,
+                                  treatment->uses_surface_nodes(),
+                                  treatment->taylor_order());
+          }
+          summary.n_bonds = summary.n_nodes *
+                            layer_operator.n_neighbours_per_node();
+          summary.n_surface_nodes    = layer_operator.n_surface_nodes();
+          summary.n_fictitious_nodes = layer_operator.n_fictitious_nodes();
+          pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << wall_clock.wall_time() << " s] nodes: " << summary.n_nodes
+                << " in the body, " << summary.n_fictitious_nodes
+                << " fictitious, " << summary.n_surface_nodes
+                << " surface nodes; " << layer_operator.n_neighbours_per_node()
+                << " bonds per node, weights by '" << algorithm_name
+                << "'; boundary treatment '" << treatment_name
+                << "', Taylor order " << treatment->taylor_order()
+                << std::defaultfloat << std::endl;
+          return;
+        }
       {
         TimerOutput::Scope scope(timer, "neighbour search and weights");
         neighbor_lists.reinit(nodes,
@@ -434,8 +497,176 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    QuasiStaticSimulation<dim>::assemble_and_solve_with_layer()
+    {
+      const IndexSet &owned_dofs = dof_handler.locally_owned_dofs();
+      const IndexSet &owned      = layer_operator.owned_unknowns();
+      std::map<types::global_dof_index, double> prescribed;
+      {
+        TimerOutput::Scope scope(timer, "assembly");
+        system_rhs.reinit(owned, communicator);
+        boundary_conditions.check_boundary_ids(triangulation);
+        if (treatment->uses_surface_nodes())
+          {
+            // Body force on the body nodes, boundary conditions on the
+            // surface nodes: Dirichlet values where prescribed, the traction
+            // times the face area in the force-flux equation otherwise.
+            for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+              {
+                const Tensor<1, dim> b =
+                  boundary_conditions.body_force_value(nodes[i].location);
+                for (unsigned int c = 0; c < dim; ++c)
+                  system_rhs[layer_operator.unknown_index(nodes[i], c)] =
+                    nodes[i].volume() * b[c];
+              }
+            const auto &mask = boundary_conditions.dirichlet_component_mask();
+            for (const auto &node : layer_operator.owned_surface_nodes())
+              {
+                const bool dirichlet =
+                  boundary_conditions.is_dirichlet_boundary(node.boundary_id);
+                const Tensor<1, dim> g =
+                  dirichlet ? boundary_conditions.dirichlet_value(node.location) :
+                              Tensor<1, dim>();
+                const Tensor<1, dim> p =
+                  boundary_conditions.is_traction_boundary(node.boundary_id) ?
+                    boundary_conditions.traction_value(node.location,
+                                                       node.normal()) :
+                    Tensor<1, dim>();
+                for (unsigned int c = 0; c < dim; ++c)
+                  if (dirichlet && mask[c])
+                    prescribed[node.first_unknown + c] = g[c];
+                  else
+                    system_rhs[node.first_unknown + c] = node.area * p[c];
+              }
+            summary.n_constrained_nodes = Utilities::MPI::sum(
+              static_cast<unsigned int>(prescribed.size()), communicator);
+          }
+        else
+          {
+            // A completed neighbourhood makes every node a bulk node: a
+            // homogeneous strain then costs nothing anywhere, and a free or
+            // loaded face has no equation that could hold it. Only bodies
+            // whose every face is fully prescribed are well posed.
+            bool all_prescribed = true;
+            for (const bool c : boundary_conditions.dirichlet_component_mask())
+              all_prescribed = all_prescribed && c;
+            for (const auto &cell : triangulation.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->at_boundary(f) &&
+                      !boundary_conditions.is_dirichlet_boundary(
+                        cell->face(f)->boundary_id()))
+                    all_prescribed = false;
+            AssertThrow(
+              Utilities::MPI::min(all_prescribed ? 1 : 0, communicator) == 1,
+              ExcInvalidInput(
+                "Boundary treatment/Treatment",
+                treatment_name,
+                "a fictitious layer alone cannot carry free or loaded faces "
+                "(with completed neighbourhoods homogeneous strains cost no "
+                "energy, so the system is singular): list every boundary id "
+                "under 'Dirichlet boundary ids' with all components, or use "
+                "'surface nodes', whose force-flux equations carry "
+                "tractions and free faces"));
+            // Conditions as without treatment: Dirichlet layers. The
+            // unknowns are the DoFs.
+            boundary_conditions.make_constraints(dof_handler,
+                                                 nodes,
+                                                 horizon,
+                                                 constraints);
+            load.reinit(owned_dofs, communicator);
+            boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+            for (const auto dof : owned_dofs)
+              if (constraints.is_constrained(dof))
+                prescribed[dof] = constraints.get_inhomogeneity(dof);
+              else
+                system_rhs[dof] = load[dof];
+            summary.n_constrained_nodes = Utilities::MPI::sum(
+              boundary_conditions.n_constrained_nodes(nodes, constraints),
+              communicator);
+          }
+        system_rhs.compress(VectorOperation::insert);
+        layer_operator.assemble(prescribed, system_matrix, system_rhs);
+      }
+      summary.n_unknowns = owned.size();
+      summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << wall_clock.wall_time()
+            << " s] assembled: " << summary.n_unknowns << " unknowns, "
+            << summary.n_nonzeros << " nonzeros, "
+            << summary.n_constrained_nodes
+            << (treatment->uses_surface_nodes() ?
+                  " prescribed surface-node components" :
+                  " nodes in Dirichlet layers")
+            << " (non-symmetric)" << std::endl;
+
+      TrilinosWrappers::MPI::Vector solution(owned, communicator);
+      {
+        TimerOutput::Scope scope(timer, "solve");
+        // Rigid translations for AMG: the component of each unknown.
+        std::vector<std::vector<bool>> constant_modes(
+          dim, std::vector<bool>(owned.n_elements(), false));
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            constant_modes[c][owned.index_within_set(
+              layer_operator.unknown_index(nodes[i], c))] = true;
+        for (const auto &node : layer_operator.owned_surface_nodes())
+          for (unsigned int c = 0; c < dim; ++c)
+            constant_modes[c][owned.index_within_set(node.first_unknown + c)] =
+              true;
+        summary.solver = linear_solver.solve(
+          system_matrix, solution, system_rhs, constant_modes, false);
+      }
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << wall_clock.wall_time() << " s] solved with "
+            << summary.solver.method << ": " << summary.solver.iterations
+            << " iteration(s), relative residual " << std::scientific
+            << std::setprecision(2) << summary.solver.relative_residual
+            << std::defaultfloat << std::endl;
+      // Equilibrium of the assembled system (with a layer there is no
+      // separate matrix-free form): |K u - f| / |K u| over the free rows.
+      {
+        TrilinosWrappers::MPI::Vector ku(owned, communicator);
+        system_matrix.vmult(ku, solution);
+        const double scale = ku.l2_norm();
+        ku -= system_rhs;
+        summary.equilibrium_residual = scale > 0 ? ku.l2_norm() / scale : 0.;
+      }
+      pcout << "           equilibrium check (assembled system): "
+            << "|F_int + F_ext| / |F_int| = " << std::scientific
+            << std::setprecision(2) << summary.equilibrium_residual
+            << std::defaultfloat << std::endl;
+
+      // Body displacements back to the DoF numbering, surface ones aside.
+      TrilinosWrappers::MPI::Vector body(owned_dofs, communicator);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          body[nodes[i].dofs[c]] =
+            solution[layer_operator.unknown_index(nodes[i], c)];
+      body.compress(VectorOperation::insert);
+      displacement.reinit(owned_dofs, nodes.relevant_dofs(), communicator);
+      displacement = body;
+      surface_displacement.clear();
+      for (const auto &node : layer_operator.owned_surface_nodes())
+        {
+          Tensor<1, dim> u;
+          for (unsigned int c = 0; c < dim; ++c)
+            u[c] = solution[node.first_unknown + c];
+          surface_displacement.push_back(u);
+        }
+    }
+
+
+    template <int dim>
+    void
     QuasiStaticSimulation<dim>::assemble_and_solve()
     {
+      if (treatment->uses_fictitious_layer())
+        {
+          assemble_and_solve_with_layer();
+          return;
+        }
+      summary.n_unknowns = dof_handler.n_dofs();
       const IndexSet &owned    = dof_handler.locally_owned_dofs();
       const IndexSet  relevant = nodes.relevant_dofs();
       {
@@ -523,49 +754,103 @@ namespace PeriDEAL
     void
     QuasiStaticSimulation<dim>::postprocess()
     {
-      std::vector<double> dilatation;
-      pd_operator.compute_dilatation(displacement, dilatation);
-
       const unsigned int         n_owned = nodes.n_owned();
-      std::vector<IO::NodeField> fields  = {{"dilatation", {}},
-                                            {"weighted_volume", {}},
-                                            {"node_volume", {}},
-                                            {"n_neighbors", {}},
+      const bool                 layer   = treatment->uses_fictitious_layer();
+      std::vector<IO::NodeField> fields  = {{"node_volume", {}},
                                             {"mpi_rank", {}},
                                             {"constrained", {}}};
       const double rank = Utilities::MPI::this_mpi_process(communicator);
       for (unsigned int i = 0; i < n_owned; ++i)
         {
-          fields[0].values.push_back(dilatation[i]);
-          fields[1].values.push_back(pd_operator.weighted_volumes()[i]);
-          fields[2].values.push_back(nodes[i].volume());
-          fields[3].values.push_back(neighbor_lists.bonds(i).size());
-          fields[4].values.push_back(rank);
+          fields[0].values.push_back(nodes[i].volume());
+          fields[1].values.push_back(rank);
           bool constrained = false;
-          for (const auto dof : nodes[i].dofs)
-            constrained = constrained || constraints.is_constrained(dof);
-          fields[5].values.push_back(constrained);
+          if (!(layer && treatment->uses_surface_nodes()))
+            for (const auto dof : nodes[i].dofs)
+              constrained = constrained || constraints.is_constrained(dof);
+          fields[2].values.push_back(constrained);
+        }
+      if (!layer)
+        {
+          // Quantities of the operator without a layer.
+          std::vector<double> dilatation;
+          pd_operator.compute_dilatation(displacement, dilatation);
+          IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
+            neighbours{"n_neighbors", {}};
+          for (unsigned int i = 0; i < n_owned; ++i)
+            {
+              theta.values.push_back(dilatation[i]);
+              m.values.push_back(pd_operator.weighted_volumes()[i]);
+              neighbours.values.push_back(neighbor_lists.bonds(i).size());
+            }
+          fields.insert(fields.begin(), {theta, m, neighbours});
         }
 
       if (compare_with_analytical)
         {
           IO::NodeField  error{"displacement_error", {}};
+          IO::NodeField  normalized{"normalized_error", {}};
           Vector<double> exact(dim);
           double         e2 = 0, u2 = 0, e_max = 0, u_max = 0;
+          // Largest analytical magnitude of each component (Eq. 38).
+          Tensor<1, dim> component_max;
           for (unsigned int i = 0; i < n_owned; ++i)
             {
               analytical_solution->vector_value(nodes[i].location, exact);
-              double e = 0, u = 0;
+              for (unsigned int c = 0; c < dim; ++c)
+                component_max[c] =
+                  std::max(component_max[c], std::abs(exact[c]));
+            }
+          for (unsigned int c = 0; c < dim; ++c)
+            component_max[c] =
+              Utilities::MPI::max(component_max[c], communicator);
+          double normalized_max = 0;
+          for (unsigned int i = 0; i < n_owned; ++i)
+            {
+              analytical_solution->vector_value(nodes[i].location, exact);
+              double e = 0, u = 0, n2 = 0;
               for (unsigned int c = 0; c < dim; ++c)
                 {
-                  e += std::pow(displacement[nodes[i].dofs[c]] - exact[c], 2);
+                  const double diff =
+                    displacement[nodes[i].dofs[c]] - exact[c];
+                  e += diff * diff;
                   u += exact[c] * exact[c];
+                  if (component_max[c] > 0)
+                    n2 += std::pow(diff / component_max[c], 2);
                 }
               e2 += nodes[i].volume() * e;
               u2 += nodes[i].volume() * u;
               e_max = std::max(e_max, std::sqrt(e));
               u_max = std::max(u_max, std::sqrt(u));
+              normalized_max = std::max(normalized_max, std::sqrt(n2));
               error.values.push_back(std::sqrt(e));
+              normalized.values.push_back(std::sqrt(n2));
+            }
+          summary.errors.max_normalized =
+            Utilities::MPI::max(normalized_max, communicator);
+          if (!node_data_file.empty())
+            write_node_data(component_max);
+          fields.push_back(normalized);
+          // Surface nodes: the same measure at the face centres.
+          if (layer && treatment->uses_surface_nodes())
+            {
+              double surface_max = 0;
+              const auto &surface = layer_operator.owned_surface_nodes();
+              for (unsigned int k = 0; k < surface.size(); ++k)
+                {
+                  analytical_solution->vector_value(surface[k].location, exact);
+                  double n2 = 0;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    if (component_max[c] > 0)
+                      n2 += std::pow((surface_displacement[k][c] - exact[c]) /
+                                       component_max[c],
+                                     2);
+                  surface_max = std::max(surface_max, std::sqrt(n2));
+                }
+              surface_max = Utilities::MPI::max(surface_max, communicator);
+              pcout << "           surface nodes: largest normalized error "
+                    << std::scientific << std::setprecision(3) << surface_max
+                    << std::defaultfloat << std::endl;
             }
           e2                 = Utilities::MPI::sum(e2, communicator);
           u2                 = Utilities::MPI::sum(u2, communicator);
@@ -578,7 +863,9 @@ namespace PeriDEAL
           pcout << "           error against the analytical solution: "
                 << "relative L2 " << std::scientific << std::setprecision(3)
                 << summary.errors.l2 << ", relative max " << summary.errors.max
-                << std::defaultfloat << std::endl;
+                << ", normalized max (Eq. 38) "
+                << summary.errors.max_normalized << std::defaultfloat
+                << std::endl;
         }
 
       TimerOutput::Scope scope(timer, "output");
@@ -588,6 +875,74 @@ namespace PeriDEAL
         pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
               << wall_clock.wall_time() << " s] wrote " << output.directory()
               << "/" << record << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    QuasiStaticSimulation<dim>::write_node_data(
+      const Tensor<1, dim> &component_max) const
+    {
+      // Rows: kind (0 body, 1 surface), x, u, exact, normalized error.
+      std::vector<double> rows;
+      Vector<double>      exact(dim);
+      const auto add = [&](const int kind, const Point<dim> &x,
+                           const Tensor<1, dim> &u) {
+        analytical_solution->vector_value(x, exact);
+        rows.push_back(kind);
+        double n2 = 0;
+        for (unsigned int c = 0; c < dim; ++c)
+          rows.push_back(x[c]);
+        for (unsigned int c = 0; c < dim; ++c)
+          rows.push_back(u[c]);
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            rows.push_back(exact[c]);
+            if (component_max[c] > 0)
+              n2 += std::pow((u[c] - exact[c]) / component_max[c], 2);
+          }
+        rows.push_back(std::sqrt(n2));
+      };
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          Tensor<1, dim> u;
+          for (unsigned int c = 0; c < dim; ++c)
+            u[c] = displacement[nodes[i].dofs[c]];
+          add(0, nodes[i].location, u);
+        }
+      if (treatment->uses_fictitious_layer() && treatment->uses_surface_nodes())
+        {
+          const auto &surface = layer_operator.owned_surface_nodes();
+          for (unsigned int k = 0; k < surface.size(); ++k)
+            add(1, surface[k].location, surface_displacement[k]);
+        }
+      const auto all = Utilities::MPI::gather(communicator, rows, 0);
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      std::ofstream out(node_data_file);
+      AssertThrow(out,
+                  ExcInvalidInput("Output/Node data file",
+                                  node_data_file,
+                                  "the file cannot be written; check the "
+                                  "directory"));
+      const char *const names[] = {"x", "y", "z"};
+      out << "kind";
+      for (unsigned int c = 0; c < dim; ++c)
+        out << ',' << names[c];
+      for (unsigned int c = 0; c < dim; ++c)
+        out << ",u_" << names[c];
+      for (unsigned int c = 0; c < dim; ++c)
+        out << ",exact_" << names[c];
+      out << ",normalized_error\n" << std::setprecision(12);
+      const unsigned int width = 3 * dim + 2;
+      for (const auto &part : all)
+        for (std::size_t r = 0; r < part.size(); r += width)
+          {
+            out << (part[r] == 0 ? "body" : "surface");
+            for (unsigned int k = 1; k < width; ++k)
+              out << ',' << part[r + k];
+            out << '\n';
+          }
     }
 
 
@@ -632,7 +987,9 @@ namespace PeriDEAL
                    "relative_residual,equilibrium_residual,l2_error,"
                    "max_error,time_mesh,time_nodes,time_neighbors,"
                    "time_operator,time_assembly,time_solve,time_output,"
-                   "time_total,peak_memory_mb\n";
+                   "time_total,peak_memory_mb,treatment,taylor_order,"
+                   "n_unknowns,n_surface_nodes,n_fictitious_nodes,"
+                   "max_normalized_error\n";
           auto t = [&](const std::string &phase) {
             const auto it = summary.seconds.find(phase);
             return it == summary.seconds.end() ? 0. : it->second;
@@ -650,7 +1007,13 @@ namespace PeriDEAL
               << ',' << t("mesh") << ',' << t("nodes and ghost exchange") << ','
               << t("neighbour search and weights") << ',' << t("operator setup")
               << ',' << t("assembly") << ',' << t("solve") << ',' << t("output")
-              << ',' << t("total") << ',' << summary.peak_memory_mb << '\n';
+              << ',' << t("total") << ',' << summary.peak_memory_mb << ",\""
+              << summary.treatment << "\"," << summary.taylor_order << ','
+              << summary.n_unknowns << ',' << summary.n_surface_nodes << ','
+              << summary.n_fictitious_nodes << ','
+              << (summary.has_errors ? to_string(summary.errors.max_normalized) :
+                                       "")
+              << '\n';
         }
       return summary;
     }

@@ -87,6 +87,14 @@ expect_error 's/set Lower corner = 0, 0/set Lower corner = 0, 0\n  set Mesh = fi
 expect_error "s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/skewed_quad.inp|" \
   "Use a Cartesian mesh"
 expect_error 's/set Dimension = 2/set Dimension = 4/' "Dimension"
+# Boundary treatments: a fictitious layer alone with free faces is singular;
+# surface nodes need equal square cells; the Taylor order is 1..3.
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/; s/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0/' \
+  "Invalid value 'fictitious layer' for the parameter 'Boundary treatment/Treatment'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/; s/set Subdivisions = 10, 10/set Subdivisions = 10, 8/' \
+  "need a uniform grid of equal cubes" 2
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\n  subsection surface nodes\n    set Taylor order = 4\n  end\nend/' \
+  "Taylor order"
 
 # No parameter file, an unreadable one, unknown options.
 out=$("$perideal" 2>&1); [ $? -ne 0 ] || fail "no argument exited with 0"
@@ -96,7 +104,8 @@ grep -qF "Cannot read the parameter file 'no-such-file.prm'" <<<"$out" || fail "
 out=$("$perideal" --frobnicate 2>&1); [ $? -ne 0 ] || fail "unknown option exited with 0"
 out=$("$perideal" --print-parameters 2 2>&1) || fail "--print-parameters failed"
 for entry in "set Dimension" "subsection Horizon" "set m-ratio" "subsection linear peridynamic solid" \
-             "set Dirichlet layer thickness" "set Preconditioner" "set Summary file"; do
+             "set Dirichlet layer thickness" "set Preconditioner" "set Summary file" \
+             "subsection Boundary treatment" "set Taylor order" "set Traction given as"; do
   grep -qF "$entry" <<<"$out" || fail "--print-parameters lacks '$entry'"
 done
 

@@ -7,6 +7,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/grid/tria.h>
+
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -92,6 +94,41 @@ namespace PeriDEAL
       n_constrained_nodes(const Discretization::NodeSet<dim> &nodes,
                           const AffineConstraints<double> &constraints) const;
 
+      /**
+       * Check that every boundary id named in the input occurs in the mesh;
+       * throws an error naming the entry otherwise.
+       */
+      void
+      check_boundary_ids(const Triangulation<dim> &triangulation) const;
+
+      /// Whether faces with boundary id @p id carry a Dirichlet condition.
+      bool
+      is_dirichlet_boundary(const types::boundary_id id) const;
+
+      /// Whether faces with boundary id @p id carry a traction.
+      bool
+      is_traction_boundary(const types::boundary_id id) const;
+
+      /// Which displacement components the Dirichlet condition prescribes.
+      const std::vector<bool> &
+      dirichlet_component_mask() const;
+
+      /// The prescribed displacement at @p p.
+      Tensor<1, dim>
+      dirichlet_value(const Point<dim> &p) const;
+
+      /// The body force density at @p p.
+      Tensor<1, dim>
+      body_force_value(const Point<dim> &p) const;
+
+      /**
+       * The traction (force per area) at @p p on a face with outward unit
+       * normal @p normal: the 'Traction' function, or the 'Boundary stress'
+       * tensor times the normal.
+       */
+      Tensor<1, dim>
+      traction_value(const Point<dim> &p, const Tensor<1, dim> &normal) const;
+
     private:
       std::vector<types::boundary_id> dirichlet_ids;
       std::vector<bool>               dirichlet_components;
@@ -101,6 +138,8 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> dirichlet_displacement;
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
       std::unique_ptr<Functions::ParsedFunction<dim>> traction;
+      std::unique_ptr<Functions::ParsedFunction<dim>> boundary_stress;
+      bool                                            traction_from_stress = false;
     };
   } // namespace Boundary
 } // namespace PeriDEAL

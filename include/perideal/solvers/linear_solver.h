@@ -36,7 +36,7 @@ namespace PeriDEAL
      * "Linear solver" of the input file: a sparse direct solver through
      * Trilinos Amesos (MUMPS by default), or a Krylov method (CG, GMRES,
      * BiCGStab) from deal.II's Trilinos wrappers with an algebraic multigrid
-     * (ML), Jacobi, SSOR or no preconditioner.
+     * (ML), Jacobi, SSOR, ILU(k) or no preconditioner.
      *
      * A solve that does not reach its tolerance is an error (the run stops
      * before any output is written), and every solve reports the residual it
@@ -75,6 +75,7 @@ namespace PeriDEAL
       std::string  method_name     = "direct";
       std::string  direct_package  = "MUMPS";
       std::string  preconditioner  = "AMG";
+      unsigned int ilu_fill        = 1;
       double       tolerance       = 1e-10;
       unsigned int max_iterations  = 10000;
       unsigned int restart_length  = 200;

@@ -17,10 +17,12 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/boundary/boundary_conditions.h>
+#include <perideal/boundary/boundary_treatment.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/solution_output.h>
 #include <perideal/models/model.h>
+#include <perideal/operators/fictitious_layer_operator.h>
 #include <perideal/operators/linear_peridynamic_operator.h>
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/solvers/linear_solver.h>
@@ -48,6 +50,13 @@ namespace PeriDEAL
     {
       double l2  = 0;
       double max = 0;
+      /**
+       * Scabbia et al. 2023, Eq. 38: the largest over the nodes of
+       * \f$\big(\sum_c ((u_{i,c} - \bar u_c(x_i)) / \max_j |\bar u_c(x_j)|)^2
+       * \big)^{1/2}\f$, each component scaled by its own largest analytical
+       * magnitude (components that vanish everywhere are left out).
+       */
+      double max_normalized = 0;
     };
 
     /**
@@ -64,6 +73,11 @@ namespace PeriDEAL
       std::size_t                   n_nonzeros = 0;
       SolverReport                  solver;
       double                        equilibrium_residual = 0;
+      std::string                   treatment            = "none";
+      unsigned int                  taylor_order         = 0;
+      types::global_dof_index       n_unknowns           = 0;
+      unsigned int                  n_surface_nodes      = 0;
+      unsigned int                  n_fictitious_nodes   = 0;
       bool                          has_errors           = false;
       ErrorNorms                    errors;
       std::map<std::string, double> seconds;
@@ -130,8 +144,17 @@ namespace PeriDEAL
       void
       assemble_and_solve();
 
+      /// assemble_and_solve() with a fictitious layer (and surface nodes).
+      void
+      assemble_and_solve_with_layer();
+
       void
       postprocess();
+
+      /// Gather every node's position, displacement and error to the CSV
+      /// named in 'Output/Node data file'.
+      void
+      write_node_data(const Tensor<1, dim> &component_max) const;
 
       const MPI_Comm     communicator;
       ConditionalOStream pcout;
@@ -150,9 +173,12 @@ namespace PeriDEAL
       std::string               algorithm_name, model_name;
       bool                      compare_with_analytical = false;
       std::string               summary_file;
+      std::string               node_data_file;
 
       std::unique_ptr<Quadrature::PartialVolume<dim>> algorithm;
       std::unique_ptr<Models::Model<dim>>             model;
+      std::string                                     treatment_name;
+      std::unique_ptr<Boundary::BoundaryTreatment>    treatment;
       Boundary::BoundaryConditions<dim>               boundary_conditions;
       std::unique_ptr<Functions::ParsedFunction<dim>> analytical_solution;
       LinearSolver                                    linear_solver;
@@ -167,6 +193,7 @@ namespace PeriDEAL
       Discretization::NodeSet<dim>              nodes;
       Discretization::NeighborList<dim>         neighbor_lists;
       Operators::LinearPeridynamicOperator<dim> pd_operator;
+      Operators::FictitiousLayerOperator<dim>   layer_operator;
       AffineConstraints<double>                 constraints;
 
       // Linear system.
@@ -174,6 +201,9 @@ namespace PeriDEAL
       TrilinosWrappers::MPI::Vector  load;
       TrilinosWrappers::MPI::Vector  system_rhs;
       TrilinosWrappers::MPI::Vector  displacement;
+      // With surface nodes: their displacements, owned ones, in the order
+      // of FictitiousLayerOperator::owned_surface_nodes().
+      std::vector<Tensor<1, dim>> surface_displacement;
 
       RunSummary summary;
     };

@@ -1,0 +1,80 @@
+#ifndef perideal_boundary_boundary_treatment_h
+#define perideal_boundary_boundary_treatment_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/base/plugin_registry.h>
+
+#include <string>
+
+namespace PeriDEAL
+{
+  namespace Boundary
+  {
+    using namespace dealii;
+
+    /**
+     * How the surface of a peridynamic body is treated (Scabbia, Zaccariotto
+     * and Galvanetto 2023, "A new surface node method ...").
+     *
+     * - "none": the body's own nodes only. Near the surface the
+     *   neighbourhoods are incomplete (surface effect) and boundary
+     *   conditions act on the nodes nearest the surface, half a cell inside
+     *   the body (Dirichlet layers, tractions on the boundary cells' nodes).
+     * - "fictitious layer": a layer of fictitious nodes, the lattice
+     *   continued a horizon (plus half a cell diagonal) beyond the surface,
+     *   completes every neighbourhood. Their displacements are Taylor
+     *   extrapolations of order N from the nearest body node, their
+     *   dilatations extrapolations of order N-1, their weighted volume the
+     *   bulk value (paper Sect. 2.4). Boundary conditions act as for "none".
+     * - "surface nodes": the fictitious layer plus one node per external cell
+     *   face with its own displacement unknowns. Fictitious displacements are
+     *   extrapolated from the nearest surface node (with surface and body
+     *   nodes in the stencil), and each surface node carries the force-flux
+     *   equation of its face (paper Sect. 3, Eqs. 34-36): Dirichlet values
+     *   are imposed on surface nodes, tractions are the right-hand side of
+     *   their equations.
+     *
+     * The classes are chosen by name in the input file through
+     * BoundaryTreatmentRegistry.
+     */
+    class BoundaryTreatment
+    {
+    public:
+      virtual ~BoundaryTreatment() = default;
+
+      /// Read the parameters of the class's own subsection.
+      virtual void
+      parse_parameters(ParameterHandler &prm) = 0;
+
+      /// Whether fictitious nodes complete the neighbourhoods.
+      virtual bool
+      uses_fictitious_layer() const = 0;
+
+      /// Whether surface nodes carry the boundary conditions.
+      virtual bool
+      uses_surface_nodes() const = 0;
+
+      /**
+       * Truncation order N of the Taylor extrapolation of displacements
+       * (dilatations use N-1); zero without a fictitious layer.
+       */
+      virtual unsigned int
+      taylor_order() const = 0;
+
+      /// The family's name in error messages.
+      static std::string
+      family_name()
+      {
+        return "boundary treatment";
+      }
+    };
+
+    /// The registry of boundary treatments.
+    using BoundaryTreatmentRegistry = PluginRegistry<BoundaryTreatment>;
+  } // namespace Boundary
+
+  extern template class PluginRegistry<Boundary::BoundaryTreatment>;
+} // namespace PeriDEAL
+
+#endif
