@@ -104,6 +104,17 @@ namespace PeriDEAL
           vertices.push_back(cell->face(f)->vertex(v));
         return BoundingBox<dim>(vertices);
       }
+
+      // The value of a dim-component function as a tensor.
+      template <int dim>
+      Tensor<1, dim>
+      tensor_value(const Function<dim> &function, const Point<dim> &p)
+      {
+        Tensor<1, dim> result;
+        for (unsigned int c = 0; c < dim; ++c)
+          result[c] = function.value(p, c);
+        return result;
+      }
     } // namespace
 
 
@@ -274,10 +285,7 @@ namespace PeriDEAL
     Tensor<1, dim>
     BoundaryConditions<dim>::dirichlet_value(const Point<dim> &p) const
     {
-      Tensor<1, dim> result;
-      for (unsigned int c = 0; c < dim; ++c)
-        result[c] = dirichlet_displacement->value(p, c);
-      return result;
+      return tensor_value(*dirichlet_displacement, p);
     }
 
 
@@ -285,10 +293,7 @@ namespace PeriDEAL
     Tensor<1, dim>
     BoundaryConditions<dim>::body_force_value(const Point<dim> &p) const
     {
-      Tensor<1, dim> result;
-      for (unsigned int c = 0; c < dim; ++c)
-        result[c] = body_force->value(p, c);
-      return result;
+      return tensor_value(*body_force, p);
     }
 
 
@@ -307,8 +312,7 @@ namespace PeriDEAL
               result[i] += tau[i * dim + j] * normal[j];
         }
       else
-        for (unsigned int c = 0; c < dim; ++c)
-          result[c] = traction->value(p, c);
+        result = tensor_value(*traction, p);
       return result;
     }
 

@@ -123,7 +123,6 @@ namespace PeriDEAL
       std::vector<SurfaceNode>              owned_surface;
       std::vector<HalfPoint<dim>>           surface_position;
       std::vector<types::global_dof_index>  surface_unknown;
-      std::unordered_map<long long, unsigned int> surface_at;
       std::unordered_map<long long, std::vector<unsigned int>> surface_buckets;
       int                                    bucket_size = 1;
 
@@ -143,8 +142,6 @@ namespace PeriDEAL
       std::vector<double> omega_r, a_r, b2_r, g_r; // per neighbour offset
       std::unordered_map<int, signed char> status_cache;
 
-      // Matrices of the product.
-      std::unique_ptr<Epetra_CrsMatrix> product_extension, product_dilatation;
 
       int
       key(const std::array<int, dim> &cell) const
@@ -707,7 +704,6 @@ namespace PeriDEAL
                 const unsigned int index = s.surface_position.size();
                 s.surface_position.push_back(p);
                 s.surface_unknown.push_back(part[e + dim]);
-                s.surface_at[s.half_key(p)] = index;
                 s.surface_buckets[s.bucket_key(p)].push_back(index);
               }
         }
@@ -1071,7 +1067,8 @@ namespace PeriDEAL
       // The products.
       const auto e_matrix = make_matrix(e_rows, ext_dofs, s.owned_sys, comm);
       const auto a_matrix = make_matrix(a_rows, s.owned_sys, ext_dofs, comm);
-      s.product_extension = multiply(*a_matrix, *e_matrix);
+      const auto product_extension = multiply(*a_matrix, *e_matrix);
+      std::unique_ptr<Epetra_CrsMatrix> product_dilatation;
       if (s.state_based)
         {
           const auto d_matrix = make_matrix(d_rows, body_scalar, ext_dofs, comm);
@@ -1080,20 +1077,18 @@ namespace PeriDEAL
           const auto b_matrix = make_matrix(b_rows, s.owned_sys, ext_scalar, comm);
           const auto de       = multiply(*d_matrix, *e_matrix);
           const auto xde      = multiply(*x_matrix, *de);
-          s.product_dilatation = multiply(*b_matrix, *xde);
+          product_dilatation = multiply(*b_matrix, *xde);
         }
-      else
-        s.product_dilatation.reset();
 
       // Elimination of the prescribed unknowns.
       const Epetra_Map sys_map = s.owned_sys.make_trilinos_map(comm, false);
       Epetra_Vector    g(sys_map), kg(sys_map), tmp(sys_map);
       for (const auto &p : prescribed)
         g[sys_map.LID(static_cast<int>(p.first))] = p.second;
-      s.product_extension->Multiply(false, g, kg);
-      if (s.product_dilatation)
+      product_extension->Multiply(false, g, kg);
+      if (product_dilatation)
         {
-          s.product_dilatation->Multiply(false, g, tmp);
+          product_dilatation->Multiply(false, g, tmp);
           kg.Update(1., tmp, 1.);
         }
 
@@ -1102,7 +1097,7 @@ namespace PeriDEAL
       {
         std::vector<types::global_dof_index> cols;
         for (const Epetra_CrsMatrix *m :
-             {s.product_extension.get(), s.product_dilatation.get()})
+             {product_extension.get(), product_dilatation.get()})
           if (m)
             for (int l = 0; l < m->ColMap().NumMyElements(); ++l)
               cols.push_back(m->ColMap().GID(l));
@@ -1118,6 +1113,11 @@ namespace PeriDEAL
         flags[p.first] = 1.;
       flags.compress(VectorOperation::insert);
       ghosted_flags = flags;
+      // Read once: the loop below touches every nonzero.
+      std::unordered_map<int, bool> column_prescribed;
+      for (const auto k : relevant)
+        if (ghosted_flags[k] != 0.)
+          column_prescribed[static_cast<int>(k)] = true;
 
       Epetra_CrsMatrix    result(Copy, sys_map, 0);
       std::map<int, double> row;
@@ -1128,7 +1128,7 @@ namespace PeriDEAL
           const int gid = sys_map.GID(l);
           row.clear();
           for (const Epetra_CrsMatrix *m :
-               {s.product_extension.get(), s.product_dilatation.get()})
+               {product_extension.get(), product_dilatation.get()})
             if (m)
               {
                 int     n;
@@ -1152,7 +1152,7 @@ namespace PeriDEAL
           else
             {
               for (const auto &e : row)
-                if (ghosted_flags[e.first] == 0.)
+                if (column_prescribed.count(e.first) == 0)
                   {
                     cols.push_back(e.first);
                     vals.push_back(e.second);
