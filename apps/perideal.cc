@@ -1,6 +1,9 @@
 // perideal: runs the quasi-static PD problem described by a parameter file.
 //
 //   perideal input.prm             run (under mpirun for several processes)
+//   perideal --threads N input.prm  with N threads per process (default:
+//                                   the cores of the machine shared among
+//                                   the processes on it)
 //   perideal --print-parameters    every entry with its default and help
 //   perideal --help                usage
 
@@ -15,6 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using namespace dealii;
 
@@ -41,14 +45,16 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: perideal <input.prm>\n"
+    out << "Usage: perideal [--threads N] <input.prm>\n"
            "       perideal --print-parameters [2|3]\n"
            "       perideal --help\n\n"
            "Runs the quasi-static peridynamic problem described by the\n"
            "deal.II parameter file <input.prm> (run it under mpirun for\n"
            "several MPI processes). --print-parameters prints every entry,\n"
            "with its default, allowed values and help text, for 3D (or the\n"
-           "dimension given). Examples are in the directory parameters/.\n";
+           "dimension given). Examples are in the directory parameters/.\n"
+           "--threads N sets the threads per process of the bond loops\n"
+           "(default: the machine's cores shared among its processes).\n";
   }
 
 
@@ -101,6 +107,8 @@ namespace
   {
     ParameterHandler prm;
     PeriDEAL::Solvers::QuasiStaticSimulation<dim>::declare_parameters(prm);
+    // The listing must run as it is: it names its own dimension.
+    prm.set("Dimension", std::to_string(dim));
     prm.print_parameters(std::cout, ParameterHandler::PRM);
   }
 } // namespace
@@ -109,8 +117,41 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // "--threads N" is taken out of the arguments before anything else; the
+  // thread pool is sized when MPI starts.
+  unsigned int       n_threads = numbers::invalid_unsigned_int;
+  std::string        threads_error;
+  std::vector<char *> args = {argv[0]};
+  for (int a = 1; a < argc; ++a)
+    if (std::string(argv[a]) == "--threads")
+      {
+        int n = 0;
+        if (a + 1 < argc)
+          {
+            std::istringstream in(argv[a + 1]);
+            in >> n;
+            if (!in || !in.eof())
+              n = 0;
+          }
+        if (n < 1)
+          threads_error = "perideal: --threads takes a positive integer, not '" +
+                          std::string(a + 1 < argc ? argv[a + 1] : "") + "'.";
+        else
+          n_threads = n;
+        ++a;
+      }
+    else
+      args.push_back(argv[a]);
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, n_threads);
+  argc = args.size();
+  argv = args.data();
   const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (!threads_error.empty())
+    {
+      if (root)
+        std::cerr << threads_error << std::endl;
+      return 1;
+    }
   try
     {
       const std::string first = argc > 1 ? argv[1] : "";

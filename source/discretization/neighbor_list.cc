@@ -34,30 +34,24 @@ namespace PeriDEAL
     NeighborList<dim>::reinit(const NodeSet<dim>                   &nodes,
                               const double                          horizon,
                               const Quadrature::PartialVolume<dim> &algorithm,
-                              const bool with_ghost_lists)
+                              const bool with_ghost_lists,
+                              const bool store_full_lists)
     {
-      const unsigned int n    = nodes.size();
-      const MPI_Comm     comm = nodes.get_communicator();
+      const unsigned int n = nodes.size();
 
-      // Uniform grid: every cell a cube of one side h, on every process.
-      double min_side = std::numeric_limits<double>::max(), max_side = 0;
-      for (const auto &node : nodes.nodes())
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double side = node.cell.side_length(d);
-            min_side          = std::min(min_side, side);
-            max_side          = std::max(max_side, side);
-          }
-      min_side       = Utilities::MPI::min(min_side, comm);
-      max_side       = Utilities::MPI::max(max_side, comm);
-      uniform        = (max_side - min_side <= 1e-12 * max_side);
-      const double h = max_side;
+      grid.reinit(nodes);
+      uniform        = grid.is_uniform();
+      const double h = grid.spacing();
 
       std::unique_ptr<Quadrature::UniformGridWeights<dim>> table;
+      full_stencil.clear();
       if (uniform)
-        table =
-          std::make_unique<Quadrature::UniformGridWeights<dim>>(algorithm,
-                                                                horizon / h);
+        {
+          table =
+            std::make_unique<Quadrature::UniformGridWeights<dim>>(algorithm,
+                                                                  horizon / h);
+          full_stencil = table->neighbours();
+        }
 
       // Bucket grid: a neighbour's centre lies within horizon + half a cell
       // diameter, so the adjacent buckets hold every candidate.
@@ -77,26 +71,23 @@ namespace PeriDEAL
         buckets[key_of(nodes[j].location)].push_back(j);
 
       auto weight_of = [&](const unsigned int i, const unsigned int j) {
-        const Node<dim> &a = nodes[i], &b = nodes[j];
         if (uniform)
           {
             std::array<int, dim> offset;
-            bool                 on_lattice = true;
             for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double o = (b.location[d] - a.location[d]) / h;
-                offset[d]      = static_cast<int>(std::lround(o));
-                on_lattice     = on_lattice && std::abs(o - offset[d]) < 1e-9;
-              }
-            if (on_lattice)
-              return table->beta(offset);
+              offset[d] = static_cast<int>(grid.coordinates(j)[d] -
+                                           grid.coordinates(i)[d]);
+            return table->beta(offset);
           }
-        return algorithm.weight(a.location, horizon, b.cell);
+        return algorithm.weight(nodes[i].location, horizon, nodes[j].cell);
       };
 
       listed.assign(n, false);
+      full.assign(n, false);
+      stored.assign(n, false);
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         listed[i] = true;
+      std::vector<unsigned int> n_bonds_of(n, 0);
 
       std::vector<std::vector<Bond>> lists(n);
       auto                           build = [&](const unsigned int i) {
@@ -129,21 +120,51 @@ namespace PeriDEAL
                     return nodes[p.neighbor].dofs[0] <
                            nodes[q.neighbor].dofs[0];
                   });
+        n_bonds_of[i] = lists[i].size();
+        full[i]       = uniform && lists[i].size() == full_stencil.size();
+        stored[i]     = store_full_lists || !full[i];
+      };
+      // A node without a stored list keeps nothing but its flags.
+      auto release = [&](const unsigned int i) {
+        if (!stored[i])
+          std::vector<Bond>().swap(lists[i]);
       };
 
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         build(i);
       owned_bonds = 0;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        owned_bonds += lists[i].size();
+        owned_bonds += n_bonds_of[i];
       if (with_ghost_lists)
         for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-          for (const Bond &bond : lists[i])
-            if (!listed[bond.neighbor])
-              {
-                listed[bond.neighbor] = true;
-                build(bond.neighbor);
-              }
+          {
+            for (const Bond &bond : lists[i])
+              if (!listed[bond.neighbor])
+                {
+                  listed[bond.neighbor] = true;
+                  build(bond.neighbor);
+                  release(bond.neighbor);
+                }
+            if (full[i])
+              for (const auto &o : full_stencil)
+                {
+                  std::array<std::int64_t, dim> x = grid.coordinates(i);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    x[d] += o.offset[d];
+                  const int j = grid.node_at(x);
+                  Assert(j >= 0, ExcInternalError());
+                  if (!listed[j])
+                    {
+                      listed[j] = true;
+                      build(j);
+                      release(j);
+                    }
+                }
+            release(i);
+          }
+      else
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          release(i);
 
       offsets.assign(n + 1, 0);
       for (unsigned int i = 0; i < n; ++i)
@@ -164,10 +185,55 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    NeighborList<dim>::has_full_stencil(const unsigned int i) const
+    {
+      return full[i];
+    }
+
+
+    template <int dim>
+    bool
+    NeighborList<dim>::has_stored_list(const unsigned int i) const
+    {
+      return listed[i] && stored[i];
+    }
+
+
+    template <int dim>
+    unsigned int
+    NeighborList<dim>::n_bonds(const unsigned int i) const
+    {
+      if (!listed[i])
+        return 0;
+      return full[i] ? full_stencil.size() : offsets[i + 1] - offsets[i];
+    }
+
+
+    template <int dim>
+    const std::vector<Quadrature::WeightedOffset<dim>> &
+    NeighborList<dim>::stencil() const
+    {
+      return full_stencil;
+    }
+
+
+    template <int dim>
+    const Lattice<dim> &
+    NeighborList<dim>::lattice() const
+    {
+      return grid;
+    }
+
+
+    template <int dim>
     ArrayView<const Bond>
     NeighborList<dim>::bonds(const unsigned int i) const
     {
       Assert(listed[i], ExcMessage("This node has no neighbour list."));
+      Assert(stored[i],
+             ExcMessage("This node's list is its full stencil and was not "
+                        "stored: iterate over stencil() instead."));
       return make_array_view(all_bonds.data() + offsets[i],
                              all_bonds.data() + offsets[i + 1]);
     }

@@ -74,23 +74,25 @@ namespace PeriDEAL
       }
 
       double
-      dilatation_coefficient(const double,
-                             const double,
-                             const double) const override
+      dilatation_constant(const double, const double) const override
       {
         return 0;
       }
 
       double
-      extension_coefficient(const double,
-                            const double r,
-                            const double horizon) const override
+      extension_constant(const double r, const double horizon) const override
       {
         const double mu = this->constants.shear;
         const double c =
           dim == 3 ? 15 * mu / (2 * M_PI * std::pow(horizon, 4) * moment) :
                      8 * mu / (M_PI * std::pow(horizon, 3) * moment);
         return 0.5 * c * this->influence(r, horizon) / r;
+      }
+
+      double
+      node_factor(const double) const override
+      {
+        return 1;
       }
 
     private:

@@ -59,19 +59,21 @@ namespace PeriDEAL
       }
 
       double
-      dilatation_coefficient(const double m,
-                             const double r,
-                             const double horizon) const override
+      dilatation_constant(const double r, const double horizon) const override
       {
-        return c_bulk * this->influence(r, horizon) * r / m;
+        return c_bulk * this->influence(r, horizon) * r;
       }
 
       double
-      extension_coefficient(const double m,
-                            const double r,
-                            const double horizon) const override
+      extension_constant(const double r, const double horizon) const override
       {
-        return c_shear * this->influence(r, horizon) / m;
+        return c_shear * this->influence(r, horizon);
+      }
+
+      double
+      node_factor(const double m) const override
+      {
+        return 1. / m;
       }
 
     private:

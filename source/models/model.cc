@@ -162,6 +162,14 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    bool
+    IsotropicModel<dim>::plane_stress() const
+    {
+      return dim == 2 && constants.plane_stress;
+    }
+
+
     template class Model<2>;
     template class Model<3>;
     template class IsotropicModel<2>;

@@ -17,6 +17,16 @@ namespace PeriDEAL
     LinearSolver::declare_parameters(ParameterHandler &prm)
     {
       prm.declare_entry(
+        "Operator",
+        "assembled",
+        Patterns::Selection("assembled|matrix-free"),
+        "How the PD operator enters the solve. 'assembled': a Trilinos "
+        "matrix (needed by the direct method, AMG on the PD matrix, SSOR and "
+        "ILU; its memory grows like the number of nodes times the nodes "
+        "within two horizons). 'matrix-free': the threaded bond loop applied "
+        "in every iteration, no matrix (Krylov methods with 'Jacobi', "
+        "'Chebyshev', 'local elasticity' or 'none').");
+      prm.declare_entry(
         "Method",
         "direct",
         Patterns::Selection("direct|CG|GMRES|BiCGStab"),
@@ -35,11 +45,22 @@ namespace PeriDEAL
       prm.declare_entry(
         "Preconditioner",
         "AMG",
-        Patterns::Selection("AMG|Jacobi|SSOR|ILU|none"),
-        "Preconditioner of the Krylov methods: Trilinos ML algebraic "
-        "multigrid (with the rigid translations as near-null space), point "
-        "Jacobi, SSOR, incomplete LU (Ifpack ILU(k) on each process, k = "
-        "'ILU fill level'), or none.");
+        Patterns::Selection(
+          "AMG|Jacobi|SSOR|ILU|Chebyshev|local elasticity|none"),
+        "Preconditioner of the Krylov methods. With 'Operator = assembled': "
+        "Trilinos ML algebraic multigrid on the PD matrix (with the rigid "
+        "translations as near-null space), point Jacobi, SSOR, incomplete LU "
+        "(Ifpack ILU(k) on each process, k = 'ILU fill level'), or none. "
+        "With 'Operator = matrix-free': 'Jacobi' or 'Chebyshev' (degree "
+        "'Chebyshev degree') on the exact diagonal, 'local elasticity' "
+        "(ML multigrid on classical elasticity discretised on the same "
+        "nodes, whose iteration counts stay bounded as h shrinks; uniform "
+        "grids), or none.");
+      prm.declare_entry("Chebyshev degree",
+                        "4",
+                        Patterns::Integer(1, 30),
+                        "Degree of the Chebyshev polynomial preconditioner "
+                        "(matrix-free operator).");
       prm.declare_entry("ILU fill level",
                         "1",
                         Patterns::Integer(0, 10),
@@ -83,10 +104,46 @@ namespace PeriDEAL
       restart_length  = prm.get_integer("GMRES restart length");
       smoother_sweeps = prm.get_integer("AMG smoother sweeps");
       aggregation     = prm.get_double("AMG aggregation threshold");
-      AssertThrow(tolerance < 1,
+      matrix_free      = prm.get("Operator") == "matrix-free";
+      chebyshev_degree = prm.get_integer("Chebyshev degree");
+      if (matrix_free)
+        {
+          AssertThrow(method_name != "direct",
+                      ExcInvalidInput(
+                        "Linear solver/Method",
+                        method_name,
+                        "a direct solver factorises a matrix, and "
+                        "'Linear solver/Operator = matrix-free' builds none: "
+                        "use 'Method = CG' (or GMRES), or 'Operator = "
+                        "assembled'"));
+          AssertThrow(preconditioner == "Jacobi" ||
+                        preconditioner == "Chebyshev" ||
+                        preconditioner == "local elasticity" ||
+                        preconditioner == "none",
+                      ExcInvalidInput(
+                        "Linear solver/Preconditioner",
+                        preconditioner,
+                        "'" + preconditioner +
+                          "' needs the assembled PD matrix, and 'Linear "
+                          "solver/Operator = matrix-free' builds none: use "
+                          "'local elasticity', 'Chebyshev' or 'Jacobi', or "
+                          "'Operator = assembled'"));
+        }
+      else
+        AssertThrow(preconditioner != "Chebyshev" &&
+                      preconditioner != "local elasticity",
+                    ExcInvalidInput(
+                      "Linear solver/Preconditioner",
+                      preconditioner,
+                      "'" + preconditioner +
+                        "' is a preconditioner of the matrix-free operator: "
+                        "set 'Linear solver/Operator = matrix-free', or use "
+                        "AMG, Jacobi, SSOR or ILU on the assembled matrix"));
+      AssertThrow(tolerance > 0 && tolerance < 1,
                   ExcInvalidInput("Linear solver/Relative tolerance",
-                                  std::to_string(tolerance),
-                                  "give a relative tolerance below 1, for "
+                                  prm.get("Relative tolerance"),
+                                  "give a relative tolerance above 0 (round-"
+                                  "off makes 0 unreachable) and below 1, for "
                                   "instance 1e-10"));
     }
 
@@ -95,6 +152,20 @@ namespace PeriDEAL
     LinearSolver::method() const
     {
       return method_name;
+    }
+
+
+    bool
+    LinearSolver::is_matrix_free() const
+    {
+      return matrix_free;
+    }
+
+
+    const std::string &
+    LinearSolver::preconditioner_name() const
+    {
+      return preconditioner;
     }
 
 

@@ -8,7 +8,10 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
+#include <deal.II/base/multithread_info.h>
+
 #include <perideal/base/exceptions.h>
+#include <perideal/operators/local_elasticity_operator.h>
 #include <perideal/solvers/quasi_static_simulation.h>
 
 #include <filesystem>
@@ -468,18 +471,29 @@ namespace PeriDEAL
                 << std::defaultfloat << std::endl;
           return;
         }
+      const bool matrix_free = linear_solver.is_matrix_free();
       {
         TimerOutput::Scope scope(timer, "neighbour search and weights");
+        // The matrix-free operator evaluates full neighbourhoods with the
+        // shared stencil: their lists need not be stored.
         neighbor_lists.reinit(nodes,
                               horizon,
                               *algorithm,
-                              model->is_state_based());
+                              model->is_state_based(),
+                              !matrix_free);
       }
       summary.n_bonds =
         Utilities::MPI::sum(neighbor_lists.n_owned_bonds(), communicator);
       {
         TimerOutput::Scope scope(timer, "operator setup");
-        pd_operator.reinit(nodes, neighbor_lists, *model, horizon);
+        if (matrix_free)
+          {
+            bond_state.reinit(nodes, neighbor_lists);
+            bond_operator.reinit(
+              nodes, neighbor_lists, *model, horizon, &bond_state);
+          }
+        else
+          pd_operator.reinit(nodes, neighbor_lists, *model, horizon);
       }
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
             << wall_clock.wall_time() << " s] nodes: " << summary.n_nodes
@@ -659,11 +673,126 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    QuasiStaticSimulation<dim>::solve_matrix_free()
+    {
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+      summary.n_unknowns    = dof_handler.n_dofs();
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      VectorType      load_vector, rhs, prescribed, solution;
+      {
+        TimerOutput::Scope scope(timer, "assembly");
+        boundary_conditions.make_constraints(dof_handler,
+                                             nodes,
+                                             horizon,
+                                             constraints);
+        load.reinit(owned, communicator);
+        boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+        constrained_operator.initialize(bond_operator, constraints);
+        constrained_operator.initialize_dof_vector(load_vector);
+        for (const auto dof : owned)
+          load_vector[dof] = load[dof];
+        constrained_operator.lift(load_vector, rhs, prescribed);
+      }
+      summary.n_constrained_nodes = Utilities::MPI::sum(
+        boundary_conditions.n_constrained_nodes(nodes, constraints),
+        communicator);
+      const unsigned int n_stencil =
+        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), communicator);
+      const std::size_t visits =
+        Utilities::MPI::sum(bond_operator.n_bond_visits(), communicator);
+      const double operator_mb =
+        Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
+                            communicator);
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << wall_clock.wall_time()
+            << " s] matrix-free operator: " << dof_handler.n_dofs()
+            << " DoFs, " << n_stencil << " nodes on the shared stencil, "
+            << summary.n_nodes - n_stencil << " on lists, "
+            << summary.n_constrained_nodes << " nodes in Dirichlet layers; "
+            << visits << " bond visits per application, "
+            << std::setprecision(1) << operator_mb << " MB, "
+            << MultithreadInfo::n_threads() << " thread(s) per process"
+            << std::defaultfloat << std::endl;
+
+      std::vector<std::vector<bool>> constant_modes;
+      if (linear_solver.preconditioner_name() == "local elasticity")
+        {
+          TimerOutput::Scope scope(timer, "preconditioner setup");
+          Operators::LocalElasticityOperator<dim>::assemble(
+            nodes, neighbor_lists.lattice(), *model, constraints, local_matrix);
+          DoFTools::extract_constant_modes(dof_handler,
+                                           ComponentMask(dim, true),
+                                           constant_modes);
+        }
+      constrained_operator.initialize_dof_vector(solution);
+      {
+        TimerOutput::Scope scope(timer, "solve");
+        summary.solver = linear_solver.solve(constrained_operator,
+                                             solution,
+                                             rhs,
+                                             &local_matrix,
+                                             constant_modes);
+      }
+      solution += prescribed;
+      solution.update_ghost_values();
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << wall_clock.wall_time() << " s] solved with "
+            << summary.solver.method << ": " << summary.solver.iterations
+            << " iteration(s), relative residual " << std::scientific
+            << std::setprecision(2) << summary.solver.relative_residual
+            << std::defaultfloat << std::endl;
+
+      // Equilibrium with the matrix-free forces at every free DoF.
+      VectorType internal;
+      bond_operator.initialize_dof_vector(internal);
+      bond_operator.apply(solution, internal);
+      double free_residual2 = 0, internal2 = 0;
+      for (unsigned int k = 0; k < internal.locally_owned_size(); ++k)
+        {
+          internal2 += std::pow(internal.local_element(k), 2);
+          if (!constrained_operator.is_prescribed(k))
+            free_residual2 += std::pow(internal.local_element(k) +
+                                         load_vector.local_element(k),
+                                       2);
+        }
+      free_residual2 = Utilities::MPI::sum(free_residual2, communicator);
+      internal2      = Utilities::MPI::sum(internal2, communicator);
+      summary.equilibrium_residual =
+        internal2 > 0 ? std::sqrt(free_residual2 / internal2) : 0.;
+      pcout << "           equilibrium check (matrix-free forces): "
+            << "|F_int + F_ext| / |F_int| = " << std::scientific
+            << std::setprecision(2) << summary.equilibrium_residual
+            << std::defaultfloat << std::endl;
+
+      TrilinosWrappers::MPI::Vector owned_solution(owned, communicator);
+      for (const auto dof : owned)
+        owned_solution[dof] = solution[dof];
+      owned_solution.compress(VectorOperation::insert);
+      displacement.reinit(owned, nodes.relevant_dofs(), communicator);
+      displacement = owned_solution;
+    }
+
+
+    template <int dim>
+    void
     QuasiStaticSimulation<dim>::assemble_and_solve()
     {
       if (treatment->uses_fictitious_layer())
         {
+          AssertThrow(!linear_solver.is_matrix_free(),
+                      ExcInvalidInput(
+                        "Linear solver/Operator",
+                        "matrix-free",
+                        "the boundary treatment '" + treatment_name +
+                          "' is available with 'Operator = assembled' only "
+                          "so far; set it, or use 'Boundary "
+                          "treatment/Treatment = none'"));
           assemble_and_solve_with_layer();
+          return;
+        }
+      if (linear_solver.is_matrix_free())
+        {
+          solve_matrix_free();
           return;
         }
       summary.n_unknowns = dof_handler.n_dofs();
@@ -774,14 +903,28 @@ namespace PeriDEAL
         {
           // Quantities of the operator without a layer.
           std::vector<double> dilatation;
-          pd_operator.compute_dilatation(displacement, dilatation);
+          const bool          matrix_free = linear_solver.is_matrix_free();
+          if (matrix_free)
+            {
+              LinearAlgebra::distributed::Vector<double> u;
+              bond_operator.initialize_dof_vector(u);
+              for (const auto dof : dof_handler.locally_owned_dofs())
+                u[dof] = displacement[dof];
+              u.update_ghost_values();
+              bond_operator.compute_dilatation(u, dilatation);
+            }
+          else
+            pd_operator.compute_dilatation(displacement, dilatation);
+          const auto &weighted_volumes = matrix_free ?
+                                           bond_operator.weighted_volumes() :
+                                           pd_operator.weighted_volumes();
           IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
             neighbours{"n_neighbors", {}};
           for (unsigned int i = 0; i < n_owned; ++i)
             {
               theta.values.push_back(dilatation[i]);
-              m.values.push_back(pd_operator.weighted_volumes()[i]);
-              neighbours.values.push_back(neighbor_lists.bonds(i).size());
+              m.values.push_back(weighted_volumes[i]);
+              neighbours.values.push_back(neighbor_lists.n_bonds(i));
             }
           fields.insert(fields.begin(), {theta, m, neighbours});
         }

@@ -3,8 +3,10 @@
 
 #include <deal.II/base/array_view.h>
 
+#include <perideal/discretization/lattice.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/quadrature/partial_volume.h>
+#include <perideal/quadrature/uniform_grid_weights.h>
 
 #include <vector>
 
@@ -38,10 +40,15 @@ namespace PeriDEAL
      * uses a bucket grid of bucket size about the horizon: O(N) work for N
      * nodes.
      *
-     * On a uniform grid (all cells cubes of one side h, centres on a common
-     * lattice) the coefficients come from a UniformGridWeights table computed
-     * once for the m-ratio; otherwise each candidate cell is passed to the
-     * algorithm as a general box.
+     * On a uniform grid (Lattice::is_uniform()) the coefficients come from
+     * a UniformGridWeights table computed once for the m-ratio; otherwise
+     * each candidate cell is passed to the algorithm as a general box.
+     *
+     * On a uniform grid a node whose neighbourhood holds every offset of
+     * the table (stencil()) has a *full stencil*; its list is then the
+     * stencil itself, in the stencil's order, and need not be stored
+     * (reinit() with @p store_full_lists = false): the bulk of a uniform
+     * grid costs no per-bond memory.
      */
     template <int dim>
     class NeighborList
@@ -57,20 +64,51 @@ namespace PeriDEAL
        * @param[in] algorithm The partial-volume algorithm.
        * @param[in] with_ghost_lists Also build lists for off-process
        *   neighbours of owned nodes.
+       * @param[in] store_full_lists Store the lists of nodes with a full
+       *   stencil too (false: only their stencil flag).
        */
       void
       reinit(const NodeSet<dim>                   &nodes,
              const double                          horizon,
              const Quadrature::PartialVolume<dim> &algorithm,
-             const bool                            with_ghost_lists);
+             const bool                            with_ghost_lists,
+             const bool                            store_full_lists = true);
 
-      /// Whether node @p i has a list.
+      /// Whether node @p i has a list (stored, or its full stencil).
       bool
       has_list(const unsigned int i) const;
 
-      /// The bonds of node @p i (node i itself excluded).
+      /// Whether node @p i has the full stencil as its neighbourhood.
+      bool
+      has_full_stencil(const unsigned int i) const;
+
+      /// Whether the list of node @p i is stored (bonds() may be called).
+      bool
+      has_stored_list(const unsigned int i) const;
+
+      /// Number of bonds of node @p i (stored or stencil).
+      unsigned int
+      n_bonds(const unsigned int i) const;
+
+      /**
+       * The stored bonds of node @p i (node i itself excluded), in the
+       * order of the neighbours' first DoF. (A node with a full stencil
+       * enumerates its bonds in the stencil's order wherever bonds are
+       * numbered, e.g. in BondState.)
+       */
       ArrayView<const Bond>
       bonds(const unsigned int i) const;
+
+      /**
+       * On a uniform grid: every lattice offset with a non-zero
+       * coefficient, in lexicographic order (empty otherwise).
+       */
+      const std::vector<Quadrature::WeightedOffset<dim>> &
+      stencil() const;
+
+      /// The lattice of the node set (uniformity decided here, once).
+      const Lattice<dim> &
+      lattice() const;
 
       /// Total number of bonds of owned nodes.
       std::size_t
@@ -84,8 +122,12 @@ namespace PeriDEAL
       std::vector<std::size_t> offsets; // size n_nodes + 1
       std::vector<Bond>        all_bonds;
       std::vector<bool>        listed;
+      std::vector<bool>        full;
+      std::vector<bool>        stored;
       std::size_t              owned_bonds = 0;
       bool                     uniform     = false;
+      Lattice<dim>             grid;
+      std::vector<Quadrature::WeightedOffset<dim>> full_stencil;
     };
   } // namespace Discretization
 } // namespace PeriDEAL

@@ -57,19 +57,50 @@ namespace PeriDEAL
       influence(const double r, const double horizon) const = 0;
 
       /**
-       * \f$a_i(r)\f$: the factor of the dilatation in the force state, for a
-       * node with weighted volume @p weighted_volume.
+       * The kernel of the force state factorised for a shared stencil: the
+       * coefficients of the force state are
+       * \f$a_i(r) = \alpha(r)\,s(m_i)\f$ and
+       * \f$b_i(r) = \beta(r)\,s(m_i)\f$, with bond constants
+       * \f$\alpha(r)\f$ (dilatation_constant()), \f$\beta(r)\f$
+       * (extension_constant()) that depend on the bond length only, and a
+       * node factor \f$s(m_i)\f$ (node_factor()) that depends on the node's
+       * weighted volume only. On a uniform grid the bond constants are
+       * per-offset constants of one stencil, and the node factors one value
+       * per node (LPS: \f$\alpha = c_K\omega r\f$,
+       * \f$\beta = c_\mu\omega\f$, \f$s = 1/m\f$; bond-based:
+       * \f$\alpha = 0\f$, \f$\beta = c\,\omega/(2r)\f$, \f$s = 1\f$).
        */
       virtual double
+      dilatation_constant(const double r, const double horizon) const = 0;
+
+      /// \f$\beta(r)\f$: see dilatation_constant().
+      virtual double
+      extension_constant(const double r, const double horizon) const = 0;
+
+      /// \f$s(m)\f$: see dilatation_constant().
+      virtual double
+      node_factor(const double weighted_volume) const = 0;
+
+      /**
+       * \f$a_i(r) = \alpha(r)\,s(m_i)\f$: the factor of the dilatation in
+       * the force state, for a node with weighted volume @p weighted_volume.
+       */
+      double
       dilatation_coefficient(const double weighted_volume,
                              const double r,
-                             const double horizon) const = 0;
+                             const double horizon) const
+      {
+        return dilatation_constant(r, horizon) * node_factor(weighted_volume);
+      }
 
-      /// \f$b_i(r)\f$: the factor of the bond extension in the force state.
-      virtual double
+      /// \f$b_i(r) = \beta(r)\,s(m_i)\f$: the factor of the bond extension.
+      double
       extension_coefficient(const double weighted_volume,
                             const double r,
-                            const double horizon) const = 0;
+                            const double horizon) const
+      {
+        return extension_constant(r, horizon) * node_factor(weighted_volume);
+      }
 
       /// The bulk modulus K (3D) of the material, for reports.
       virtual double
@@ -78,6 +109,13 @@ namespace PeriDEAL
       /// The shear modulus of the material.
       virtual double
       shear_modulus() const = 0;
+
+      /// In 2D: whether the model is in plane stress (false: plane strain).
+      virtual bool
+      plane_stress() const
+      {
+        return false;
+      }
 
       static std::string
       family_name();
@@ -147,6 +185,9 @@ namespace PeriDEAL
 
       double
       shear_modulus() const override;
+
+      bool
+      plane_stress() const override;
 
     protected:
       ElasticConstants                   constants;

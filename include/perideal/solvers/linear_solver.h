@@ -3,8 +3,11 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+
+#include <perideal/operators/constrained_operator.h>
 
 #include <string>
 #include <vector>
@@ -68,13 +71,39 @@ namespace PeriDEAL
             const std::vector<std::vector<bool>> &constant_modes,
             const bool                            symmetric) const;
 
+      /**
+       * Solve \f$K x = b\f$ without the PD matrix: a Krylov method of
+       * deal.II on the matrix-free @p op, preconditioned by Jacobi or
+       * Chebyshev on its exact diagonal, or by algebraic multigrid (ML) on
+       * @p local_matrix, the local elasticity operator on the same nodes
+       * (Operators::LocalElasticityOperator; may be null for the other
+       * preconditioners). @p constant_modes as for the assembled solve.
+       */
+      template <int dim>
+      SolverReport
+      solve(const Operators::ConstrainedOperator<dim>        &op,
+            LinearAlgebra::distributed::Vector<double>       &solution,
+            const LinearAlgebra::distributed::Vector<double> &rhs,
+            const TrilinosWrappers::SparseMatrix             *local_matrix,
+            const std::vector<std::vector<bool>> &constant_modes) const;
+
       const std::string &
       method() const;
+
+      /// Whether 'Operator = matrix-free'.
+      bool
+      is_matrix_free() const;
+
+      /// The preconditioner's name as given.
+      const std::string &
+      preconditioner_name() const;
 
     private:
       std::string  method_name     = "direct";
       std::string  direct_package  = "MUMPS";
       std::string  preconditioner  = "AMG";
+      bool         matrix_free     = false;
+      unsigned int chebyshev_degree = 4;
       unsigned int ilu_fill        = 1;
       double       tolerance       = 1e-10;
       unsigned int max_iterations  = 10000;

@@ -22,6 +22,9 @@
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/solution_output.h>
 #include <perideal/models/model.h>
+#include <perideal/discretization/bond_state.h>
+#include <perideal/operators/bond_operator.h>
+#include <perideal/operators/constrained_operator.h>
 #include <perideal/operators/fictitious_layer_operator.h>
 #include <perideal/operators/linear_peridynamic_operator.h>
 #include <perideal/quadrature/partial_volume.h>
@@ -148,6 +151,10 @@ namespace PeriDEAL
       void
       assemble_and_solve_with_layer();
 
+      /// assemble_and_solve() with 'Operator = matrix-free'.
+      void
+      solve_matrix_free();
+
       void
       postprocess();
 
@@ -193,6 +200,10 @@ namespace PeriDEAL
       Discretization::NodeSet<dim>              nodes;
       Discretization::NeighborList<dim>         neighbor_lists;
       Operators::LinearPeridynamicOperator<dim> pd_operator;
+      Discretization::BondState<dim>            bond_state;
+      Operators::BondOperator<dim>              bond_operator;
+      Operators::ConstrainedOperator<dim>       constrained_operator;
+      TrilinosWrappers::SparseMatrix            local_matrix;
       Operators::FictitiousLayerOperator<dim>   layer_operator;
       AffineConstraints<double>                 constraints;
 

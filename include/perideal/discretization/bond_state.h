@@ -1,0 +1,104 @@
+#ifndef perideal_discretization_bond_state_h
+#define perideal_discretization_bond_state_h
+
+#include <perideal/discretization/neighbor_list.h>
+#include <perideal/discretization/node_set.h>
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Discretization
+  {
+    /**
+     * Intact or broken: one bit per bond, for every node that has a
+     * neighbour list (owned nodes and, for state-based models, their
+     * off-process neighbours).
+     *
+     * Bonds of a node are numbered as NeighborList enumerates them: a node
+     * with a full stencil in the stencil's order, any other node in the
+     * order of its stored list. A bond is a pair: breaking bond (i, j)
+     * breaks (j, i) too, on whichever process holds j's list, after
+     * synchronize(). The bulk of an undamaged uniform grid costs one bit per
+     * bond and nothing else.
+     */
+    template <int dim>
+    class BondState
+    {
+    public:
+      /// All bonds intact, sized for @p lists.
+      void
+      reinit(const NodeSet<dim> &nodes, const NeighborList<dim> &lists);
+
+      /// Whether bond @p k of node @p i is broken.
+      bool
+      is_broken(const unsigned int i, const unsigned int k) const
+      {
+        const std::size_t b = first[i] + k;
+        return (bits[b >> 6] >> (b & 63)) & 1u;
+      }
+
+      /// Whether any bond of node @p i is broken.
+      bool
+      any_broken(const unsigned int i) const
+      {
+        return n_broken_of[i] > 0;
+      }
+
+      /// Number of broken bonds of node @p i.
+      unsigned int
+      n_broken(const unsigned int i) const
+      {
+        return n_broken_of[i];
+      }
+
+      /**
+       * Break bond @p k of node @p i here. Call synchronize() on all
+       * processes afterwards, so that the reverse bond and every copy of
+       * this one are broken as well.
+       */
+      void
+      break_bond(const unsigned int i, const unsigned int k);
+
+      /**
+       * Make the bond state consistent (collective): every bond broken on
+       * any process since the last call is broken in both directions on
+       * every process that has a list for either end. Returns the number of
+       * bonds (pairs) that were newly broken on all processes together.
+       */
+      std::size_t
+      synchronize();
+
+      /**
+       * The index of the bond from node @p i to node @p j among i's bonds,
+       * or -1 when j is not a neighbour of i (set-up cost: a binary search
+       * or a table look-up, not for hot loops).
+       */
+      int
+      bond_index(const unsigned int i, const unsigned int j) const;
+
+      /// Number of broken bond pairs over all processes, counted at owned
+      /// nodes (each pair once per end).
+      std::size_t
+      n_broken_global() const;
+
+    private:
+      const NodeSet<dim>                             *nodes = nullptr;
+      const NeighborList<dim>                        *lists = nullptr;
+      std::vector<std::size_t>                        first;
+      std::vector<std::uint64_t>                      bits;
+      std::vector<unsigned int>                       n_broken_of;
+      std::vector<std::pair<std::uint64_t, std::uint64_t>> pending;
+      std::vector<int>                                stencil_index;
+      int                                             stencil_bound = 0;
+
+      /// Set the bit of bond k of node i; whether it was intact.
+      bool
+      set(const unsigned int i, const unsigned int k);
+    };
+  } // namespace Discretization
+} // namespace PeriDEAL
+
+#endif

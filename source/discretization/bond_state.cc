@@ -1,0 +1,167 @@
+#include <deal.II/base/mpi.h>
+
+#include <perideal/discretization/bond_state.h>
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace PeriDEAL
+{
+  namespace Discretization
+  {
+    template <int dim>
+    void
+    BondState<dim>::reinit(const NodeSet<dim>      &node_set,
+                           const NeighborList<dim> &neighbor_lists)
+    {
+      nodes = &node_set;
+      lists = &neighbor_lists;
+      const unsigned int n = node_set.size();
+      first.assign(n + 1, 0);
+      for (unsigned int i = 0; i < n; ++i)
+        first[i + 1] = first[i] + neighbor_lists.n_bonds(i);
+      bits.assign((first[n] + 63) / 64, 0);
+      n_broken_of.assign(n, 0);
+      pending.clear();
+
+      // Offsets of the stencil in a dense table, for bond_index().
+      stencil_bound = 0;
+      for (const auto &o : neighbor_lists.stencil())
+        for (unsigned int d = 0; d < dim; ++d)
+          stencil_bound = std::max(stencil_bound, std::abs(o.offset[d]));
+      std::size_t size = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        size *= 2 * stencil_bound + 1;
+      stencil_index.assign(neighbor_lists.stencil().empty() ? 0 : size, -1);
+      for (unsigned int k = 0; k < neighbor_lists.stencil().size(); ++k)
+        {
+          std::size_t s = 0;
+          for (int d = dim - 1; d >= 0; --d)
+            s = s * (2 * stencil_bound + 1) +
+                (neighbor_lists.stencil()[k].offset[d] + stencil_bound);
+          stencil_index[s] = k;
+        }
+    }
+
+
+    template <int dim>
+    bool
+    BondState<dim>::set(const unsigned int i, const unsigned int k)
+    {
+      const std::size_t   b    = first[i] + k;
+      const std::uint64_t mask = std::uint64_t(1) << (b & 63);
+      if (bits[b >> 6] & mask)
+        return false;
+      bits[b >> 6] |= mask;
+      ++n_broken_of[i];
+      return true;
+    }
+
+
+    template <int dim>
+    void
+    BondState<dim>::break_bond(const unsigned int i, const unsigned int k)
+    {
+      AssertIndexRange(k, first[i + 1] - first[i]);
+      if (!set(i, k))
+        return;
+      const unsigned int j =
+        lists->has_full_stencil(i) ?
+          [&]() {
+            std::array<std::int64_t, dim> x = lists->lattice().coordinates(i);
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] += lists->stencil()[k].offset[d];
+            return static_cast<unsigned int>(lists->lattice().node_at(x));
+          }() :
+          lists->bonds(i)[k].neighbor;
+      pending.emplace_back((*nodes)[i].dofs[0], (*nodes)[j].dofs[0]);
+    }
+
+
+    template <int dim>
+    int
+    BondState<dim>::bond_index(const unsigned int i, const unsigned int j) const
+    {
+      if (lists->has_full_stencil(i))
+        {
+          const auto &xi = lists->lattice().coordinates(i);
+          const auto &xj = lists->lattice().coordinates(j);
+          std::size_t s  = 0;
+          for (int d = dim - 1; d >= 0; --d)
+            {
+              const std::int64_t o = xj[d] - xi[d];
+              if (o < -stencil_bound || o > stencil_bound)
+                return -1;
+              s = s * (2 * stencil_bound + 1) + (o + stencil_bound);
+            }
+          return stencil_index[s];
+        }
+      const auto  list = lists->bonds(i);
+      const auto  key  = (*nodes)[j].dofs[0];
+      const auto *it   = std::lower_bound(list.begin(),
+                                        list.end(),
+                                        key,
+                                        [&](const Bond &b, const auto value) {
+                                          return (*nodes)[b.neighbor].dofs[0] <
+                                                 value;
+                                        });
+      if (it == list.end() || it->neighbor != j)
+        return -1;
+      return it - list.begin();
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondState<dim>::synchronize()
+    {
+      const MPI_Comm comm = nodes->get_communicator();
+      // Pairs without orientation, each once.
+      std::vector<std::pair<std::uint64_t, std::uint64_t>> all;
+      for (const auto &part : Utilities::MPI::all_gather(comm, pending))
+        for (const auto &p : part)
+          all.emplace_back(std::min(p.first, p.second),
+                           std::max(p.first, p.second));
+      pending.clear();
+      std::sort(all.begin(), all.end());
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+      if (all.empty())
+        return 0;
+
+      std::unordered_map<std::uint64_t, unsigned int> local;
+      local.reserve(nodes->size());
+      for (unsigned int i = 0; i < nodes->size(); ++i)
+        local.emplace((*nodes)[i].dofs[0], i);
+      auto break_here = [&](const std::uint64_t a, const std::uint64_t b) {
+        const auto ia = local.find(a), ib = local.find(b);
+        if (ia == local.end() || ib == local.end() ||
+            !lists->has_list(ia->second))
+          return;
+        const int k = bond_index(ia->second, ib->second);
+        if (k >= 0)
+          set(ia->second, k);
+      };
+      for (const auto &p : all)
+        {
+          break_here(p.first, p.second);
+          break_here(p.second, p.first);
+        }
+      return all.size();
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondState<dim>::n_broken_global() const
+    {
+      std::size_t n = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        n += n_broken_of[i];
+      return Utilities::MPI::sum(n, nodes->get_communicator());
+    }
+
+
+    template class BondState<2>;
+    template class BondState<3>;
+  } // namespace Discretization
+} // namespace PeriDEAL

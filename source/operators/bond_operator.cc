@@ -1,0 +1,649 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+
+#include <perideal/operators/bond_operator.h>
+
+#include <algorithm>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    namespace
+    {
+      // Work items per task of the thread pool: runs of the stencil loop
+      // and nodes of the list loop.
+      constexpr unsigned int chunk_grain = 4;
+      constexpr unsigned int node_grain  = 256;
+
+      template <int dim>
+      double
+      cell_measure(const double h)
+      {
+        return std::pow(h, dim);
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::reinit(const Discretization::NodeSet<dim>      &nodes_,
+                              const Discretization::NeighborList<dim> &lists_,
+                              const Models::Model<dim>                &model_,
+                              const double                             horizon_,
+                              const Discretization::BondState<dim> *state_)
+    {
+      nodes       = &nodes_;
+      lists       = &lists_;
+      model       = &model_;
+      horizon     = horizon_;
+      bond_state  = state_;
+      state_based = model->is_state_based();
+      const unsigned int n = nodes->size();
+
+      // The vector layout: owned DoFs, then every other node of the set as
+      // a ghost.
+      {
+        std::vector<types::global_dof_index> dofs;
+        for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+          dofs.insert(dofs.end(),
+                      (*nodes)[i].dofs.begin(),
+                      (*nodes)[i].dofs.end());
+        std::sort(dofs.begin(), dofs.end());
+        IndexSet owned(nodes->relevant_dofs().size());
+        owned.add_indices(dofs.begin(), dofs.end());
+        owned.compress();
+        partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+          owned, nodes->relevant_dofs(), nodes->get_communicator());
+      }
+      vector_index.resize(n);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          vector_index[i] = partitioner->global_to_local((*nodes)[i].dofs[0]);
+          for (unsigned int c = 1; c < dim; ++c)
+            AssertThrow(partitioner->global_to_local((*nodes)[i].dofs[c]) ==
+                          vector_index[i] + c,
+                        ExcMessage("BondOperator needs the dim DoFs of a node "
+                                   "numbered consecutively (FESystem of "
+                                   "FE_DGQ(0) without renumbering)."));
+        }
+
+      // Slots: the lattice box on a uniform grid, unless it is much larger
+      // than the node set (a scattered partition); node indices otherwise.
+      const auto &lattice = lists->lattice();
+      use_lattice =
+        lattice.is_uniform() && !lists->stencil().empty() &&
+        lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
+      slot.resize(n);
+      n_slots = use_lattice ? lattice.n_slots() : n;
+      for (unsigned int i = 0; i < n; ++i)
+        slot[i] = use_lattice ? lattice.slot(i) : i;
+
+      // Reference weighted volumes (every bond, broken or not).
+      const double h  = lattice.spacing();
+      double       m0 = 0;
+      for (const auto &o : lists->stencil())
+        {
+          double r2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            r2 += double(o.offset[d]) * o.offset[d];
+          const double r = std::sqrt(r2) * h;
+          m0 += model->influence(r, horizon) * r * r * o.beta *
+                cell_measure<dim>(h);
+        }
+      m.assign(n, 0.);
+      for (unsigned int i = 0; i < n; ++i)
+        if (lists->has_full_stencil(i))
+          m[i] = m0;
+        else if (lists->has_list(i))
+          for (const auto &bond : lists->bonds(i))
+            {
+              const double r =
+                (*nodes)[i].location.distance((*nodes)[bond.neighbor].location);
+              m[i] += model->influence(r, horizon) * r * r * bond.weight;
+            }
+
+      // The shared stencil: slot offsets and per-offset constants.
+      stencil = Stencil();
+      if (use_lattice)
+        {
+          const double volume = cell_measure<dim>(h);
+          stencil.node_factor = model->node_factor(m0);
+          for (const auto &o : lists->stencil())
+            {
+              Tensor<1, dim> xi;
+              for (unsigned int d = 0; d < dim; ++d)
+                xi[d] = o.offset[d] * h;
+              const double r = xi.norm();
+              const double w = o.beta * volume;
+              stencil.slot_offset.push_back(lattice.slot_offset(o.offset));
+              for (unsigned int d = 0; d < dim; ++d)
+                stencil.n[d].push_back(xi[d] / r);
+              stencil.g.push_back(
+                state_based ? dim / m0 * model->influence(r, horizon) * r * w :
+                              0.);
+              stencil.a.push_back(volume * w *
+                                  model->dilatation_constant(r, horizon));
+              stencil.b.push_back(volume * w *
+                                  model->extension_constant(r, horizon));
+            }
+        }
+
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          u_slot[c].resize_fast(n_slots);
+          f_slot[c].resize_fast(n_slots);
+          std::fill(u_slot[c].begin(), u_slot[c].end(), 0.);
+          std::fill(f_slot[c].begin(), f_slot[c].end(), 0.);
+        }
+      t_slot.resize_fast(n_slots);
+      s_slot.resize_fast(n_slots);
+      std::fill(t_slot.begin(), t_slot.end(), 0.);
+      std::fill(s_slot.begin(), s_slot.end(), 0.);
+      for (unsigned int i = 0; i < n; ++i)
+        if (lists->has_list(i))
+          s_slot[slot[i]] = model->node_factor(m[i]);
+        else if (!state_based)
+          s_slot[slot[i]] = model->node_factor(0.);
+
+      // State-based forces need every neighbour's dilatation.
+      if (state_based)
+        {
+          bool complete = true;
+          for (unsigned int i = 0; i < nodes->n_owned() && complete; ++i)
+            for_each_intact_bond(i, [&](const unsigned int j, const double) {
+              complete = complete && lists->has_list(j);
+            });
+          AssertThrow(complete,
+                      ExcMessage("A state-based model needs neighbour lists "
+                                 "of the off-process neighbours of owned "
+                                 "nodes: build the NeighborList with "
+                                 "with_ghost_lists = true, and the NodeSet "
+                                 "with a coupling range of at least twice "
+                                 "the horizon plus two cell diameters."));
+        }
+
+      build_work_lists();
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::update_bond_state()
+    {
+      build_work_lists();
+    }
+
+
+    template <int dim>
+    bool
+    BondOperator<dim>::on_stencil(const unsigned int i) const
+    {
+      return use_lattice && lists->has_full_stencil(i) &&
+             !(bond_state != nullptr && bond_state->any_broken(i));
+    }
+
+
+    template <int dim>
+    template <typename Function>
+    void
+    BondOperator<dim>::for_each_intact_bond(const unsigned int i,
+                                            const Function    &f) const
+    {
+      if (lists->has_full_stencil(i))
+        {
+          const auto  &lattice = lists->lattice();
+          const double volume  = cell_measure<dim>(lattice.spacing());
+          const auto  &x       = lattice.coordinates(i);
+          const auto  &offsets = lists->stencil();
+          for (unsigned int k = 0; k < offsets.size(); ++k)
+            if (bond_state == nullptr || !bond_state->is_broken(i, k))
+              {
+                std::array<std::int64_t, dim> y = x;
+                for (unsigned int d = 0; d < dim; ++d)
+                  y[d] += offsets[k].offset[d];
+                f(static_cast<unsigned int>(lattice.node_at(y)),
+                  offsets[k].beta * volume);
+              }
+        }
+      else
+        {
+          const auto bonds = lists->bonds(i);
+          for (unsigned int k = 0; k < bonds.size(); ++k)
+            if (bond_state == nullptr || !bond_state->is_broken(i, k))
+              f(bonds[k].neighbor, bonds[k].weight);
+        }
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::build_work_lists()
+    {
+      const unsigned int n = nodes->size();
+      std::vector<bool>  needs_theta(n, false), needs_force(n, false);
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        needs_force[i] = true;
+      if (state_based)
+        for (unsigned int i = 0; i < n; ++i)
+          needs_theta[i] = lists->has_list(i);
+
+      auto make_chunks = [&](const std::vector<bool> &needed,
+                             std::vector<Chunk>      &chunks) {
+        std::vector<std::size_t> slots;
+        for (unsigned int i = 0; i < n; ++i)
+          if (needed[i] && on_stencil(i))
+            slots.push_back(slot[i]);
+        std::sort(slots.begin(), slots.end());
+        chunks.clear();
+        for (std::size_t k = 0; k < slots.size(); ++k)
+          if (!chunks.empty() &&
+              chunks.back().first_slot + chunks.back().length == slots[k] &&
+              chunks.back().length < chunk_size)
+            ++chunks.back().length;
+          else
+            chunks.push_back({slots[k], 1});
+      };
+      make_chunks(needs_theta, theta_chunks);
+      make_chunks(needs_force, force_chunks);
+
+      theta_list_nodes.clear();
+      force_list_nodes.clear();
+      list_first.assign(n + 1, 0);
+      list_bonds.clear();
+      n_owned_stencil = 0;
+      bond_visits     = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          if ((needs_theta[i] || needs_force[i]) && !on_stencil(i))
+            {
+              if (needs_theta[i])
+                theta_list_nodes.push_back(i);
+              if (needs_force[i])
+                force_list_nodes.push_back(i);
+              const Point<dim> &x      = (*nodes)[i].location;
+              const double      volume = (*nodes)[i].volume();
+              for_each_intact_bond(i, [&](const unsigned int j,
+                                          const double       w) {
+                const Tensor<1, dim> xi = (*nodes)[j].location - x;
+                const double         r  = xi.norm();
+                ListBond             bond;
+                bond.neighbor_slot = slot[j];
+                for (unsigned int d = 0; d < dim; ++d)
+                  bond.n[d] = xi[d] / r;
+                bond.g = state_based ?
+                           dim / m[i] * model->influence(r, horizon) * r * w :
+                           0.;
+                bond.a = volume * w * model->dilatation_constant(r, horizon);
+                bond.b = volume * w * model->extension_constant(r, horizon);
+                list_bonds.push_back(bond);
+              });
+              const std::size_t n_bonds = list_bonds.size() - list_first[i];
+              bond_visits += (needs_theta[i] ? n_bonds : 0) +
+                             (needs_force[i] ? n_bonds : 0);
+            }
+          else if (needs_force[i] && on_stencil(i))
+            ++n_owned_stencil;
+          list_first[i + 1] = list_bonds.size();
+        }
+      const std::size_t stencil_size = stencil.slot_offset.size();
+      for (const auto &chunk : theta_chunks)
+        bond_visits += chunk.length * stencil_size;
+      for (const auto &chunk : force_chunks)
+        bond_visits += chunk.length * stencil_size;
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::copy_in(const VectorType &displacement) const
+    {
+      const double *values = displacement.begin();
+      parallel::apply_to_subranges(
+        0u,
+        static_cast<unsigned int>(nodes->size()),
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              u_slot[c][slot[i]] = values[vector_index[i] + c];
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::dilatation_pass() const
+    {
+      const std::size_t n_offsets = stencil.slot_offset.size();
+      // The uniform bulk: theta_i = sum_k g_k n_k . (u_{i+k} - u_i),
+      // vectorised over a run of consecutive slots.
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        theta_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double theta[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = theta_chunks[c].first_slot;
+              const unsigned int len = theta_chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
+                theta[l] = 0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = stencil.slot_offset[k];
+                  double               gn[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    gn[d] = stencil.g[k] * stencil.n[d][k];
+                  const double *ui[dim], *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      ui[d] = u_slot[d].data() + s0;
+                      uj[d] = ui[d] + o;
+                    }
+#pragma omp simd
+                  for (unsigned int l = 0; l < len; ++l)
+                    {
+                      double sum = 0;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        sum += gn[d] * (uj[d][l] - ui[d][l]);
+                      theta[l] += sum;
+                    }
+                }
+              const double s = stencil.node_factor;
+              for (unsigned int l = 0; l < len; ++l)
+                t_slot[s0 + l] = s * theta[l];
+            }
+        },
+        chunk_grain);
+
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        theta_list_nodes.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const unsigned int i  = theta_list_nodes[q];
+              const std::size_t  si = slot[i];
+              double             theta = 0;
+              for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                {
+                  const ListBond   &bond = list_bonds[b];
+                  const std::size_t sj   = bond.neighbor_slot;
+                  double            e    = 0;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                  theta += bond.g * e;
+                }
+              t_slot[si] = s_slot[si] * theta;
+            }
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::force_pass() const
+    {
+      const std::size_t n_offsets = stencil.slot_offset.size();
+      const bool        sb        = state_based;
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        force_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double force[dim][chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = force_chunks[c].first_slot;
+              const unsigned int len = force_chunks[c].length;
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  force[d][l] = 0;
+              const double *ui[dim];
+              for (unsigned int d = 0; d < dim; ++d)
+                ui[d] = u_slot[d].data() + s0;
+              const double *ti = t_slot.data() + s0;
+              const double *si = s_slot.data() + s0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = stencil.slot_offset[k];
+                  const double         a = stencil.a[k], b = stencil.b[k];
+                  double               nk[dim];
+                  const double        *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      nk[d] = stencil.n[d][k];
+                      uj[d] = ui[d] + o;
+                    }
+                  if (sb)
+                    {
+                      const double *tj = ti + o, *sj = si + o;
+#pragma omp simd
+                      for (unsigned int l = 0; l < len; ++l)
+                        {
+                          double e = 0;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            e += nk[d] * (uj[d][l] - ui[d][l]);
+                          const double t =
+                            a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            force[d][l] += t * nk[d];
+                        }
+                    }
+                  else
+                    {
+                      // Bond-based: s = 1 at every node.
+                      const double b2 = 2 * b;
+#pragma omp simd
+                      for (unsigned int l = 0; l < len; ++l)
+                        {
+                          double e = 0;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            e += nk[d] * (uj[d][l] - ui[d][l]);
+                          const double t = b2 * e;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            force[d][l] += t * nk[d];
+                        }
+                    }
+                }
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  f_slot[d][s0 + l] = force[d][l];
+            }
+        },
+        chunk_grain);
+
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        force_list_nodes.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const unsigned int i  = force_list_nodes[q];
+              const std::size_t  si = slot[i];
+              double             f[dim] = {};
+              for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                {
+                  const ListBond   &bond = list_bonds[b];
+                  const std::size_t sj   = bond.neighbor_slot;
+                  double            e    = 0;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                  const double t = bond.a * (t_slot[si] + t_slot[sj]) +
+                                   bond.b * (s_slot[si] + s_slot[sj]) * e;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    f[d] += t * bond.n[d];
+                }
+              for (unsigned int d = 0; d < dim; ++d)
+                f_slot[d][si] = f[d];
+            }
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::apply(const VectorType &displacement,
+                             VectorType       &force) const
+    {
+      copy_in(displacement);
+      if (state_based)
+        dilatation_pass();
+      force_pass();
+      double *values = force.begin();
+      parallel::apply_to_subranges(
+        0u,
+        nodes->n_owned(),
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              values[vector_index[i] + c] = f_slot[c][slot[i]];
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::compute_dilatation(const VectorType    &displacement,
+                                          std::vector<double> &dilatation) const
+    {
+      dilatation.assign(nodes->size(), 0.);
+      if (!state_based)
+        return;
+      copy_in(displacement);
+      dilatation_pass();
+      for (unsigned int i = 0; i < nodes->size(); ++i)
+        if (lists->has_list(i))
+          dilatation[i] = t_slot[slot[i]] / s_slot[slot[i]];
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::compute_diagonal(VectorType &diagonal) const
+    {
+      // K_ii = V_i sum_j w [beta (s_i + s_j) n (x) n + alpha s_i n (x) G_i
+      //        - alpha s_j n (x) g_ji], G_i = sum_j g_ij, with
+      // g_ij = (d / m_i) omega r w_ij n_ij (see the class documentation).
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const Point<dim> &x      = (*nodes)[i].location;
+          const double      volume = (*nodes)[i].volume();
+          const double      s_i    = s_slot[slot[i]];
+          Tensor<1, dim>    G, a_sum, diag;
+          for_each_intact_bond(i, [&](const unsigned int j, const double w) {
+            const Tensor<1, dim> xi = (*nodes)[j].location - x;
+            const double         r  = xi.norm();
+            const Tensor<1, dim> n  = xi / r;
+            const double         s_j   = s_slot[slot[j]];
+            const double         alpha = model->dilatation_constant(r, horizon);
+            const double         beta  = model->extension_constant(r, horizon);
+            for (unsigned int c = 0; c < dim; ++c)
+              diag[c] += volume * w * beta * (s_i + s_j) * n[c] * n[c];
+            if (!state_based)
+              return;
+            G += dim / m[i] * model->influence(r, horizon) * r * w * n;
+            a_sum += volume * w * alpha * s_i * n;
+            // g_ji: node j's bond back to i (weight w_ji), if it has one.
+            double w_ji = 0;
+            if (lists->has_full_stencil(j))
+              w_ji = w * (*nodes)[i].volume() / (*nodes)[j].volume();
+            else
+              for (const auto &bond : lists->bonds(j))
+                if (bond.neighbor == i)
+                  {
+                    w_ji = bond.weight;
+                    break;
+                  }
+            const double g_ji =
+              dim / m[j] * model->influence(r, horizon) * r * w_ji;
+            for (unsigned int c = 0; c < dim; ++c)
+              diag[c] += volume * w * alpha * s_j * n[c] * g_ji * n[c];
+          });
+          for (unsigned int c = 0; c < dim; ++c)
+            diagonal.local_element(vector_index[i] + c) =
+              diag[c] + a_sum[c] * G[c];
+        }
+    }
+
+
+    template <int dim>
+    const std::shared_ptr<const Utilities::MPI::Partitioner> &
+    BondOperator<dim>::get_partitioner() const
+    {
+      return partitioner;
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::initialize_dof_vector(VectorType &v) const
+    {
+      v.reinit(partitioner);
+    }
+
+
+    template <int dim>
+    const std::vector<double> &
+    BondOperator<dim>::weighted_volumes() const
+    {
+      return m;
+    }
+
+
+    template <int dim>
+    unsigned int
+    BondOperator<dim>::n_stencil_nodes() const
+    {
+      return n_owned_stencil;
+    }
+
+
+    template <int dim>
+    unsigned int
+    BondOperator<dim>::n_list_nodes() const
+    {
+      return force_list_nodes.size();
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::n_bond_visits() const
+    {
+      return bond_visits;
+    }
+
+
+    template <int dim>
+    bool
+    BondOperator<dim>::is_state_based() const
+    {
+      return state_based;
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::memory_consumption() const
+    {
+      std::size_t bytes =
+        vector_index.capacity() * sizeof(unsigned int) +
+        slot.capacity() * sizeof(std::size_t) + m.capacity() * sizeof(double) +
+        (theta_chunks.capacity() + force_chunks.capacity()) * sizeof(Chunk) +
+        (theta_list_nodes.capacity() + force_list_nodes.capacity()) *
+          sizeof(unsigned int) +
+        list_first.capacity() * sizeof(std::size_t) +
+        list_bonds.capacity() * sizeof(ListBond) +
+        (2 * dim + 2) * n_slots * sizeof(double);
+      return bytes;
+    }
+
+
+    template class BondOperator<2>;
+    template class BondOperator<3>;
+  } // namespace Operators
+} // namespace PeriDEAL

@@ -1,0 +1,105 @@
+#include <perideal/operators/constrained_operator.h>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    template <int dim>
+    void
+    ConstrainedOperator<dim>::initialize(
+      const BondOperator<dim>         &bond_operator,
+      const AffineConstraints<double> &constraints)
+    {
+      op                = &bond_operator;
+      const auto &part  = *op->get_partitioner();
+      const auto  local = part.locally_owned_size();
+      prescribed_entry.assign(local, false);
+      prescribed_value.assign(local, 0.);
+      for (unsigned int k = 0; k < local; ++k)
+        {
+          const auto dof = part.local_to_global(k);
+          if (constraints.is_constrained(dof))
+            {
+              AssertThrow(constraints.get_constraint_entries(dof)->empty(),
+                          ExcMessage("The PD operator eliminates only "
+                                     "prescribed values u_k = g_k, not "
+                                     "constraints that couple DoFs."));
+              prescribed_entry[k] = true;
+              prescribed_value[k] = constraints.get_inhomogeneity(dof);
+            }
+        }
+      op->initialize_dof_vector(diag);
+      op->initialize_dof_vector(work);
+      op->compute_diagonal(diag);
+      // A prescribed row keeps its diagonal; a row without bonds (an
+      // isolated node) would make K singular: it is reported by the caller.
+      applications = 0;
+    }
+
+
+    template <int dim>
+    void
+    ConstrainedOperator<dim>::vmult(VectorType &dst, const VectorType &src) const
+    {
+      const unsigned int local = prescribed_entry.size();
+      for (unsigned int k = 0; k < local; ++k)
+        work.local_element(k) = prescribed_entry[k] ? 0. : src.local_element(k);
+      work.update_ghost_values();
+      op->apply(work, dst);
+      for (unsigned int k = 0; k < local; ++k)
+        dst.local_element(k) = prescribed_entry[k] ?
+                                 diag.local_element(k) * src.local_element(k) :
+                                 -dst.local_element(k);
+      ++applications;
+    }
+
+
+    template <int dim>
+    void
+    ConstrainedOperator<dim>::lift(const VectorType &load,
+                                   VectorType       &rhs,
+                                   VectorType       &prescribed) const
+    {
+      const unsigned int local = prescribed_entry.size();
+      initialize_dof_vector(prescribed);
+      initialize_dof_vector(rhs);
+      for (unsigned int k = 0; k < local; ++k)
+        prescribed.local_element(k) = prescribed_value[k];
+      prescribed.update_ghost_values();
+      // rhs = load - K g = load + F(g) on free DoFs.
+      op->apply(prescribed, rhs);
+      for (unsigned int k = 0; k < local; ++k)
+        rhs.local_element(k) =
+          prescribed_entry[k] ? 0. : load.local_element(k) + rhs.local_element(k);
+      prescribed.zero_out_ghost_values();
+    }
+
+
+    template <int dim>
+    const typename ConstrainedOperator<dim>::VectorType &
+    ConstrainedOperator<dim>::diagonal() const
+    {
+      return diag;
+    }
+
+
+    template <int dim>
+    types::global_dof_index
+    ConstrainedOperator<dim>::m() const
+    {
+      return op->get_partitioner()->size();
+    }
+
+
+    template <int dim>
+    void
+    ConstrainedOperator<dim>::initialize_dof_vector(VectorType &v) const
+    {
+      op->initialize_dof_vector(v);
+    }
+
+
+    template class ConstrainedOperator<2>;
+    template class ConstrainedOperator<3>;
+  } // namespace Operators
+} // namespace PeriDEAL

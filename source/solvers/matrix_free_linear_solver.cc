@@ -1,0 +1,188 @@
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/diagonal_matrix.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/solver_bicgstab.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/solvers/linear_solver.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Solvers
+  {
+    namespace
+    {
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+      /// Run the selected Krylov method with @p precondition.
+      template <typename Operator, typename Preconditioner>
+      void
+      run_krylov(const std::string    &method,
+                 const unsigned int    restart_length,
+                 SolverControl        &control,
+                 const Operator       &op,
+                 VectorType           &x,
+                 const VectorType     &b,
+                 const Preconditioner &precondition)
+      {
+        if (method == "CG")
+          {
+            SolverCG<VectorType> solver(control);
+            solver.solve(op, x, b, precondition);
+          }
+        else if (method == "GMRES")
+          {
+            SolverGMRES<VectorType> solver(
+              control,
+              typename SolverGMRES<VectorType>::AdditionalData(restart_length));
+            solver.solve(op, x, b, precondition);
+          }
+        else
+          {
+            SolverBicgstab<VectorType> solver(control);
+            solver.solve(op, x, b, precondition);
+          }
+      }
+    } // namespace
+
+
+    template <int dim>
+    SolverReport
+    LinearSolver::solve(const Operators::ConstrainedOperator<dim> &op,
+                        VectorType                                &solution,
+                        const VectorType                          &rhs,
+                        const TrilinosWrappers::SparseMatrix *local_matrix,
+                        const std::vector<std::vector<bool>> &constant_modes)
+      const
+    {
+      Timer        timer;
+      SolverReport report;
+      report.method =
+        method_name + " + " + preconditioner + " (matrix-free operator)";
+      const double rhs_norm = rhs.l2_norm();
+      AssertThrow(std::isfinite(rhs_norm),
+                  ExcMessage("The right-hand side of the linear system "
+                             "holds non-finite values (NaN or Inf): check "
+                             "the body force, traction and Dirichlet "
+                             "expressions."));
+      if (rhs_norm == 0)
+        {
+          solution = 0;
+          return report;
+        }
+
+      // Zero rows (nodes without bonds) make the diagonal preconditioners
+      // and the operator singular: say so instead of dividing by zero.
+      const VectorType &diagonal = op.diagonal();
+      VectorType        inverse_diagonal(diagonal);
+      unsigned int      zero_rows = 0;
+      for (unsigned int k = 0; k < diagonal.locally_owned_size(); ++k)
+        {
+          const double d = diagonal.local_element(k);
+          if (!(d > 0))
+            ++zero_rows;
+          inverse_diagonal.local_element(k) = d > 0 ? 1. / d : 1.;
+        }
+      zero_rows =
+        Utilities::MPI::sum(zero_rows, diagonal.get_mpi_communicator());
+      AssertThrow(zero_rows == 0,
+                  ExcMessage(std::to_string(zero_rows) +
+                             " rows of the PD stiffness have no positive "
+                             "diagonal entry: nodes without intact bonds. "
+                             "Raise the m-ratio or check the mesh."));
+
+      SolverControl control(max_iterations, tolerance * rhs_norm);
+      try
+        {
+          if (preconditioner == "Jacobi")
+            {
+              DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
+              run_krylov(method_name, restart_length, control, op, solution,
+                         rhs, jacobi);
+            }
+          else if (preconditioner == "Chebyshev")
+            {
+              using Chebyshev =
+                PreconditionChebyshev<Operators::ConstrainedOperator<dim>,
+                                      VectorType,
+                                      DiagonalMatrix<VectorType>>;
+              typename Chebyshev::AdditionalData data;
+              data.degree          = chebyshev_degree;
+              data.smoothing_range = 0.; // precondition the whole spectrum
+              data.eig_cg_n_iterations = 20;
+              data.preconditioner =
+                std::make_shared<DiagonalMatrix<VectorType>>(inverse_diagonal);
+              Chebyshev chebyshev;
+              chebyshev.initialize(op, data);
+              run_krylov(method_name, restart_length, control, op, solution,
+                         rhs, chebyshev);
+            }
+          else if (preconditioner == "local elasticity")
+            {
+              AssertThrow(local_matrix != nullptr, ExcInternalError());
+              TrilinosWrappers::PreconditionAMG::AdditionalData data;
+              data.elliptic              = true;
+              data.constant_modes        = constant_modes;
+              data.smoother_sweeps       = smoother_sweeps;
+              data.aggregation_threshold = aggregation;
+              TrilinosWrappers::PreconditionAMG amg;
+              amg.initialize(*local_matrix, data);
+              run_krylov(method_name, restart_length, control, op, solution,
+                         rhs, amg);
+            }
+          else
+            run_krylov(method_name, restart_length, control, op, solution,
+                       rhs, PreconditionIdentity());
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          std::ostringstream message;
+          message << "The linear solver (" << report.method
+                  << ") did not converge: after " << e.last_step
+                  << " iterations the residual is "
+                  << e.last_residual / rhs_norm
+                  << " of |b|, above 'Linear solver/Relative tolerance' = "
+                  << tolerance
+                  << ". Raise 'Maximum iterations', use 'Preconditioner = "
+                     "local elasticity', or check that the Dirichlet "
+                     "conditions fix every rigid motion.";
+          AssertThrow(false, ExcMessage(message.str()));
+        }
+      report.iterations = control.last_step();
+
+      // The residual actually reached, measured with the operator.
+      VectorType residual;
+      op.initialize_dof_vector(residual);
+      op.vmult(residual, solution);
+      residual.sadd(-1., 1., rhs);
+      report.relative_residual = residual.l2_norm() / rhs_norm;
+      AssertThrow(std::isfinite(report.relative_residual),
+                  ExcMessage("The linear solve produced non-finite values "
+                             "(NaN or Inf)."));
+      report.seconds = timer.wall_time();
+      return report;
+    }
+
+
+    template SolverReport
+    LinearSolver::solve<2>(const Operators::ConstrainedOperator<2> &,
+                           VectorType &,
+                           const VectorType &,
+                           const TrilinosWrappers::SparseMatrix *,
+                           const std::vector<std::vector<bool>> &) const;
+    template SolverReport
+    LinearSolver::solve<3>(const Operators::ConstrainedOperator<3> &,
+                           VectorType &,
+                           const VectorType &,
+                           const TrilinosWrappers::SparseMatrix *,
+                           const std::vector<std::vector<bool>> &) const;
+  } // namespace Solvers
+} // namespace PeriDEAL
