@@ -65,16 +65,21 @@ namespace PeriDEAL
       AssertIndexRange(k, first[i + 1] - first[i]);
       if (!set(i, k))
         return;
-      const unsigned int j =
-        lists->has_full_stencil(i) ?
-          [&]() {
-            std::array<std::int64_t, dim> x = lists->lattice().coordinates(i);
-            for (unsigned int d = 0; d < dim; ++d)
-              x[d] += lists->stencil()[k].offset[d];
-            return static_cast<unsigned int>(lists->lattice().node_at(x));
-          }() :
-          lists->bonds(i)[k].neighbor;
-      pending.emplace_back((*nodes)[i].dofs[0], (*nodes)[j].dofs[0]);
+      pending.emplace_back((*nodes)[i].dofs[0],
+                           (*nodes)[neighbor(i, k)].dofs[0]);
+    }
+
+
+    template <int dim>
+    unsigned int
+    BondState<dim>::neighbor(const unsigned int i, const unsigned int k) const
+    {
+      if (!lists->has_full_stencil(i))
+        return lists->bonds(i)[k].neighbor;
+      std::array<std::int64_t, dim> x = lists->lattice().coordinates(i);
+      for (unsigned int d = 0; d < dim; ++d)
+        x[d] += lists->stencil()[k].offset[d];
+      return static_cast<unsigned int>(lists->lattice().node_at(x));
     }
 
 

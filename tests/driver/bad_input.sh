@@ -95,6 +95,23 @@ expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatme
   "need a uniform grid of equal cubes" 2
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\n  subsection surface nodes\n    set Taylor order = 4\n  end\nend/' \
   "Taylor order"
+# The matrix-free operator: no direct solver and no preconditioner that
+# needs the PD matrix; its own preconditioners need 'matrix-free'; a zero
+# tolerance is unreachable; layer treatments are assembled-only so far.
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\nend/' \
+  "Invalid value 'direct' for the parameter 'Linear solver/Method'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = ILU\nend/' \
+  "Invalid value 'ILU' for the parameter 'Linear solver/Preconditioner'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Method = CG\n  set Preconditioner = local elasticity\nend/' \
+  "set 'Linear solver/Operator = matrix-free'" 2
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Method = CG\n  set Relative tolerance = 0\nend/' \
+  "Invalid value '0' for the parameter 'Linear solver/Relative tolerance'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
+  "Invalid value 'matrix-free' for the parameter 'Linear solver/Operator'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\n  set Maximum iterations = 3\nend/' \
+  "did not converge: after 3 iterations" 2
+out=$("$perideal" --threads 0 base.prm 2>&1); [ $? -ne 0 ] || fail "--threads 0 exited with 0"
+grep -qF -- "--threads takes a positive integer, not '0'" <<<"$out" || fail "--threads 0: $out"
 
 # No parameter file, an unreadable one, unknown options.
 out=$("$perideal" 2>&1); [ $? -ne 0 ] || fail "no argument exited with 0"
@@ -103,8 +120,10 @@ out=$("$perideal" no-such-file.prm 2>&1); [ $? -ne 0 ] || fail "missing file exi
 grep -qF "Cannot read the parameter file 'no-such-file.prm'" <<<"$out" || fail "missing .prm: $out"
 out=$("$perideal" --frobnicate 2>&1); [ $? -ne 0 ] || fail "unknown option exited with 0"
 out=$("$perideal" --print-parameters 2 2>&1) || fail "--print-parameters failed"
+# The listing runs as it is, in its own dimension.
+grep -qF "set Dimension = 2" <<<"$out" || fail "--print-parameters 2 does not say 'set Dimension = 2'"
 for entry in "set Dimension" "subsection Horizon" "set m-ratio" "subsection linear peridynamic solid" \
-             "set Dirichlet layer thickness" "set Preconditioner" "set Summary file" \
+             "set Dirichlet layer thickness" "set Preconditioner" "set Summary file" "set Operator" \
              "subsection Boundary treatment" "set Taylor order" "set Traction given as"; do
   grep -qF "$entry" <<<"$out" || fail "--print-parameters lacks '$entry'"
 done

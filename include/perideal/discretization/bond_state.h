@@ -71,6 +71,10 @@ namespace PeriDEAL
       std::size_t
       synchronize();
 
+      /// The local index of the neighbour at the end of bond @p k of @p i.
+      unsigned int
+      neighbor(const unsigned int i, const unsigned int k) const;
+
       /**
        * The index of the bond from node @p i to node @p j among i's bonds,
        * or -1 when j is not a neighbour of i (set-up cost: a binary search
