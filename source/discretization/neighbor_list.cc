@@ -67,8 +67,9 @@ namespace PeriDEAL
                          std::vector<unsigned int>,
                          BucketHash<dim>>
         buckets;
-      for (unsigned int j = 0; j < n; ++j)
-        buckets[key_of(nodes[j].location)].push_back(j);
+      if (!uniform)
+        for (unsigned int j = 0; j < n; ++j)
+          buckets[key_of(nodes[j].location)].push_back(j);
 
       auto weight_of = [&](const unsigned int i, const unsigned int j) {
         if (uniform)
@@ -92,6 +93,40 @@ namespace PeriDEAL
       std::vector<std::vector<Bond>> lists(n);
       auto                           build = [&](const unsigned int i) {
         const Point<dim>          &x = nodes[i].location;
+        if (uniform)
+          {
+            // On the lattice the neighbours are the stencil's offsets that
+            // hold a node: no search, no distance test.
+            const auto  &xi     = grid.coordinates(i);
+            unsigned int n_here = 0;
+            for (const auto &o : full_stencil)
+              {
+                std::array<std::int64_t, dim> y = xi;
+                for (unsigned int d = 0; d < dim; ++d)
+                  y[d] += o.offset[d];
+                const int j = grid.node_at(y);
+                if (j < 0)
+                  continue;
+                ++n_here;
+                lists[i].push_back(
+                  {static_cast<unsigned int>(j), o.beta * nodes[j].volume()});
+              }
+            full[i]       = (n_here == full_stencil.size());
+            stored[i]     = store_full_lists || !full[i];
+            n_bonds_of[i] = n_here;
+            if (!stored[i])
+              {
+                std::vector<Bond>().swap(lists[i]);
+                return;
+              }
+            std::sort(lists[i].begin(),
+                      lists[i].end(),
+                      [&](const Bond &p, const Bond &q) {
+                        return nodes[p.neighbor].dofs[0] <
+                               nodes[q.neighbor].dofs[0];
+                      });
+            return;
+          }
         const std::array<int, dim> key = key_of(x);
         std::array<int, dim>       k;
         const unsigned int         n_adjacent = std::pow(3, dim);
@@ -130,8 +165,13 @@ namespace PeriDEAL
           std::vector<Bond>().swap(lists[i]);
       };
 
+      // Lists that are not kept go right after they are built: the bulk of
+      // a uniform grid never holds more than one list at a time.
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        build(i);
+        {
+          build(i);
+          release(i);
+        }
       owned_bonds = 0;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         owned_bonds += n_bonds_of[i];

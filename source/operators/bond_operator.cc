@@ -91,6 +91,7 @@ namespace PeriDEAL
           m0 += model->influence(r, horizon) * r * r * o.beta *
                 cell_measure<dim>(h);
         }
+      stencil_weighted_volume = m0;
       m.assign(n, 0.);
       for (unsigned int i = 0; i < n; ++i)
         if (lists->has_full_stencil(i))
@@ -126,6 +127,31 @@ namespace PeriDEAL
                                   model->dilatation_constant(r, horizon));
               stencil.b.push_back(volume * w *
                                   model->extension_constant(r, horizon));
+            }
+        }
+
+      // Offsets of the stencil in a dense table, for lists on the lattice.
+      stencil_bound = 0;
+      stencil_lookup.clear();
+      if (use_lattice)
+        {
+          AssertThrow(lists->stencil().size() < 65536,
+                      ExcMessage("The stencil has more than 65535 offsets: "
+                                 "use a smaller m-ratio."));
+          for (const auto &o : lists->stencil())
+            for (unsigned int d = 0; d < dim; ++d)
+              stencil_bound = std::max(stencil_bound, std::abs(o.offset[d]));
+          std::size_t size = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            size *= 2 * stencil_bound + 1;
+          stencil_lookup.assign(size, -1);
+          for (unsigned int k = 0; k < lists->stencil().size(); ++k)
+            {
+              std::size_t q = 0;
+              for (int d = dim - 1; d >= 0; --d)
+                q = q * (2 * stencil_bound + 1) +
+                    (lists->stencil()[k].offset[d] + stencil_bound);
+              stencil_lookup[q] = k;
             }
         }
 
@@ -181,6 +207,22 @@ namespace PeriDEAL
     {
       return use_lattice && lists->has_full_stencil(i) &&
              !(bond_state != nullptr && bond_state->any_broken(i));
+    }
+
+
+    template <int dim>
+    unsigned int
+    BondOperator<dim>::stencil_index(const unsigned int i,
+                                     const unsigned int j) const
+    {
+      const auto &lattice = lists->lattice();
+      std::size_t q       = 0;
+      for (int d = dim - 1; d >= 0; --d)
+        q = q * (2 * stencil_bound + 1) +
+            (lattice.coordinates(j)[d] - lattice.coordinates(i)[d] +
+             stencil_bound);
+      Assert(stencil_lookup[q] >= 0, ExcInternalError());
+      return stencil_lookup[q];
     }
 
 
@@ -251,6 +293,9 @@ namespace PeriDEAL
       force_list_nodes.clear();
       list_first.assign(n + 1, 0);
       list_bonds.clear();
+      list_stencil_index.clear();
+      list_theta_scale.assign(use_lattice ? n : 0, 0.);
+      const double m0 = stencil_weighted_volume;
       n_owned_stencil = 0;
       bond_visits     = 0;
       for (unsigned int i = 0; i < n; ++i)
@@ -263,6 +308,22 @@ namespace PeriDEAL
                 force_list_nodes.push_back(i);
               const Point<dim> &x      = (*nodes)[i].location;
               const double      volume = (*nodes)[i].volume();
+              if (use_lattice)
+                {
+                  // The stencil's constants hold for every node of the
+                  // lattice; only the dilatation factor d / m_i differs.
+                  list_theta_scale[i] = m[i] > 0 ? m0 / m[i] : 0.;
+                  for_each_intact_bond(i, [&](const unsigned int j,
+                                              const double) {
+                    list_stencil_index.push_back(stencil_index(i, j));
+                  });
+                  const std::size_t n_bonds =
+                    list_stencil_index.size() - list_first[i];
+                  bond_visits += (needs_theta[i] ? n_bonds : 0) +
+                                 (needs_force[i] ? n_bonds : 0);
+                  list_first[i + 1] = list_stencil_index.size();
+                  continue;
+                }
               for_each_intact_bond(i, [&](const unsigned int j,
                                           const double       w) {
                 const Tensor<1, dim> xi = (*nodes)[j].location - x;
@@ -284,7 +345,8 @@ namespace PeriDEAL
             }
           else if (needs_force[i] && on_stencil(i))
             ++n_owned_stencil;
-          list_first[i + 1] = list_bonds.size();
+          list_first[i + 1] =
+            use_lattice ? list_stencil_index.size() : list_bonds.size();
         }
       const std::size_t stencil_size = stencil.slot_offset.size();
       for (const auto &chunk : theta_chunks)
@@ -366,15 +428,30 @@ namespace PeriDEAL
               const unsigned int i  = theta_list_nodes[q];
               const std::size_t  si = slot[i];
               double             theta = 0;
-              for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+              if (use_lattice)
                 {
-                  const ListBond   &bond = list_bonds[b];
-                  const std::size_t sj   = bond.neighbor_slot;
-                  double            e    = 0;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
-                  theta += bond.g * e;
+                  for (std::size_t b = list_first[i]; b < list_first[i + 1];
+                       ++b)
+                    {
+                      const unsigned int k  = list_stencil_index[b];
+                      const std::size_t  sj = si + stencil.slot_offset[k];
+                      double             e  = 0;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        e += stencil.n[d][k] * (u_slot[d][sj] - u_slot[d][si]);
+                      theta += stencil.g[k] * e;
+                    }
+                  theta *= list_theta_scale[i];
                 }
+              else
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const ListBond   &bond = list_bonds[b];
+                    const std::size_t sj   = bond.neighbor_slot;
+                    double            e    = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                    theta += bond.g * e;
+                  }
               t_slot[si] = s_slot[si] * theta;
             }
         },
@@ -463,6 +540,20 @@ namespace PeriDEAL
               const unsigned int i  = force_list_nodes[q];
               const std::size_t  si = slot[i];
               double             f[dim] = {};
+              if (use_lattice)
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const unsigned int k  = list_stencil_index[b];
+                    const std::size_t  sj = si + stencil.slot_offset[k];
+                    double             e  = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      e += stencil.n[d][k] * (u_slot[d][sj] - u_slot[d][si]);
+                    const double t = stencil.a[k] * (t_slot[si] + t_slot[sj]) +
+                                     stencil.b[k] * (s_slot[si] + s_slot[sj]) * e;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      f[d] += t * stencil.n[d][k];
+                  }
+              else
               for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
                 {
                   const ListBond   &bond = list_bonds[b];
@@ -528,6 +619,54 @@ namespace PeriDEAL
       // K_ii = V_i sum_j w [beta (s_i + s_j) n (x) n + alpha s_i n (x) G_i
       //        - alpha s_j n (x) g_ji], G_i = sum_j g_ij, with
       // g_ij = (d / m_i) omega r w_ij n_ij (see the class documentation).
+      if (use_lattice)
+        {
+          // On the lattice every bond's constants are the stencil's:
+          // g_ij = g_k m_0 / m_i, and g_ji = g_k m_0 / m_j (w_ji = w_ij).
+          const double m0 = stencil_weighted_volume;
+          const auto  &lattice = lists->lattice();
+          parallel::apply_to_subranges(
+            0u,
+            nodes->n_owned(),
+            [&](const unsigned int begin, const unsigned int end) {
+              for (unsigned int i = begin; i < end; ++i)
+                {
+                  const double   s_i = s_slot[slot[i]];
+                  Tensor<1, dim> G, a_sum, diag;
+                  auto           add = [&](const unsigned int k) {
+                    std::array<std::int64_t, dim> y = lattice.coordinates(i);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      y[d] += lists->stencil()[k].offset[d];
+                    const unsigned int j   = lattice.node_at(y);
+                    const double       s_j = s_slot[slot[j]];
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        const double n_c = stencil.n[c][k];
+                        diag[c] += stencil.b[k] * (s_i + s_j) * n_c * n_c;
+                        if (state_based)
+                          {
+                            G[c] += stencil.g[k] * m0 / m[i] * n_c;
+                            a_sum[c] += stencil.a[k] * s_i * n_c;
+                            diag[c] += stencil.a[k] * s_j * n_c * n_c *
+                                       stencil.g[k] * m0 / m[j];
+                          }
+                      }
+                  };
+                  if (on_stencil(i))
+                    for (unsigned int k = 0; k < stencil.g.size(); ++k)
+                      add(k);
+                  else
+                    for (std::size_t b = list_first[i]; b < list_first[i + 1];
+                         ++b)
+                      add(list_stencil_index[b]);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    diagonal.local_element(vector_index[i] + c) =
+                      diag[c] + a_sum[c] * G[c];
+                }
+            },
+            node_grain);
+          return;
+        }
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
           const Point<dim> &x      = (*nodes)[i].location;
@@ -638,6 +777,9 @@ namespace PeriDEAL
           sizeof(unsigned int) +
         list_first.capacity() * sizeof(std::size_t) +
         list_bonds.capacity() * sizeof(ListBond) +
+        list_stencil_index.capacity() * sizeof(std::uint16_t) +
+        list_theta_scale.capacity() * sizeof(double) +
+        stencil_lookup.capacity() * sizeof(int) +
         (2 * dim + 2) * n_slots * sizeof(double);
       return bytes;
     }

@@ -1132,7 +1132,8 @@ namespace PeriDEAL
                    "time_operator,time_assembly,time_solve,time_output,"
                    "time_total,peak_memory_mb,treatment,taylor_order,"
                    "n_unknowns,n_surface_nodes,n_fictitious_nodes,"
-                   "max_normalized_error\n";
+                   "max_normalized_error,operator,preconditioner,"
+                   "time_preconditioner,n_threads\n";
           auto t = [&](const std::string &phase) {
             const auto it = summary.seconds.find(phase);
             return it == summary.seconds.end() ? 0. : it->second;
@@ -1156,6 +1157,9 @@ namespace PeriDEAL
               << summary.n_fictitious_nodes << ','
               << (summary.has_errors ? to_string(summary.errors.max_normalized) :
                                        "")
+              << ",\"" << (linear_solver.is_matrix_free() ? "matrix-free" : "assembled")
+              << "\",\"" << linear_solver.preconditioner_name() << "\","
+              << t("preconditioner setup") << ',' << MultithreadInfo::n_threads()
               << '\n';
         }
       return summary;

@@ -12,6 +12,7 @@
 #include <perideal/models/model.h>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -183,12 +184,20 @@ namespace PeriDEAL
       std::vector<std::size_t>                           slot;
       std::size_t                                        n_slots = 0;
       std::vector<double>                                m;
+      double stencil_weighted_volume = 0; // m of a full neighbourhood
       Stencil                                            stencil;
 
       std::vector<Chunk>        theta_chunks, force_chunks;
       std::vector<unsigned int> theta_list_nodes, force_list_nodes;
       std::vector<std::size_t>  list_first;
-      std::vector<ListBond>     list_bonds;
+      // Off a lattice: one ListBond per bond. On a lattice the bonds of a
+      // node off the shared stencil are a subset of the stencil: the
+      // stencil index of each (2 bytes a bond), the constants shared.
+      std::vector<ListBond>      list_bonds;
+      std::vector<std::uint16_t> list_stencil_index;
+      std::vector<double>        list_theta_scale; // m_0 / m_i per node
+      std::vector<int>           stencil_lookup;   // dense offset -> index
+      int                        stencil_bound = 0;
       std::vector<unsigned int> owned_slots;
       unsigned int              n_owned_stencil = 0;
       std::size_t               bond_visits     = 0;
@@ -201,6 +210,10 @@ namespace PeriDEAL
       /// Whether node i is evaluated with the shared stencil.
       bool
       on_stencil(const unsigned int i) const;
+
+      /// The stencil index of the lattice offset from node i to node j.
+      unsigned int
+      stencil_index(const unsigned int i, const unsigned int j) const;
 
       /// Call f(j, w_ij) for every intact bond of node i.
       template <typename Function>
