@@ -37,7 +37,7 @@ namespace PeriDEAL
     void
     SolutionOutput<dim>::parse_parameters(ParameterHandler &prm)
     {
-      enabled          = prm.get_bool("Write VTU");
+      write_vtu        = prm.get_bool("Write VTU");
       output_directory = prm.get("Directory");
       base_name        = prm.get("Base name");
       AssertThrow(!base_name.empty() &&
@@ -65,7 +65,7 @@ namespace PeriDEAL
       const TrilinosWrappers::MPI::Vector &displacement,
       const std::vector<NodeField>        &fields) const
     {
-      if (!enabled)
+      if (!write_vtu)
         return "";
       const MPI_Comm comm = dof_handler.get_communicator();
       if (Utilities::MPI::this_mpi_process(comm) == 0)

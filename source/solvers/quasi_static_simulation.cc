@@ -10,6 +10,7 @@
 
 #include <deal.II/base/multithread_info.h>
 
+#include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/operators/local_elasticity_operator.h>
 #include <perideal/solvers/quasi_static_simulation.h>
@@ -368,21 +369,26 @@ namespace PeriDEAL
           lower[d] = std::numeric_limits<double>::max();
           upper[d] = -std::numeric_limits<double>::max();
         }
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            // Every cell must be an axis-aligned box (a clear error
-            // otherwise), before any size is derived from it.
-            const BoundingBox<dim> box = Discretization::cell_box(*cell);
-            for (unsigned int d = 0; d < dim; ++d)
-              h = std::min(h, box.side_length(d));
-            for (const unsigned int v : cell->vertex_indices())
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  lower[d] = std::min(lower[d], cell->vertex(v)[d]);
-                  upper[d] = std::max(upper[d], cell->vertex(v)[d]);
-                }
-          }
+      // Every cell must be an axis-aligned box (a clear error otherwise),
+      // before any size is derived from it; the check fails on the process
+      // that owns the cell, and all processes stop with its message.
+      check_on_all_ranks(
+        [&]() {
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                const BoundingBox<dim> box = Discretization::cell_box(*cell);
+                for (unsigned int d = 0; d < dim; ++d)
+                  h = std::min(h, box.side_length(d));
+                for (const unsigned int v : cell->vertex_indices())
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+                      upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+                    }
+              }
+        },
+        communicator);
       h                      = Utilities::MPI::min(h, communicator);
       double smallest_extent = std::numeric_limits<double>::max();
       for (unsigned int d = 0; d < dim; ++d)
@@ -1094,6 +1100,37 @@ namespace PeriDEAL
     QuasiStaticSimulation<dim>::run()
     {
       wall_clock.restart();
+      // Output paths are checked before any work, on every process that
+      // writes, and the verdict is shared: a failure on one process must
+      // not leave the others waiting.
+      {
+        std::string error;
+        if (output.enabled())
+          {
+            const std::string why =
+              check_writable_directory(output.directory());
+            if (!why.empty())
+              error = "Invalid value '" + output.directory() +
+                      "' for the parameter 'Output/Directory': " + why +
+                      "; give a directory that exists or can be created.";
+          }
+        if (error.empty() &&
+            Utilities::MPI::this_mpi_process(communicator) == 0)
+          for (const auto &[entry, file] :
+               {std::make_pair(std::string("Output/Summary file"),
+                               summary_file),
+                std::make_pair(std::string("Output/Node data file"),
+                               node_data_file)})
+            if (!file.empty() && error.empty())
+              {
+                const std::string why = check_writable_file(file);
+                if (!why.empty())
+                  error = "Invalid value '" + file + "' for the parameter '" +
+                          entry + "': " + why +
+                          "; give a writable file in an existing directory.";
+              }
+        throw_on_any_rank(error, communicator);
+      }
       pcout << "PeriDEAL quasi-static " << dim << "D: model '" << model_name
             << "', partial volumes '" << algorithm_name << "', solver '"
             << linear_solver.method() << "'" << std::endl;

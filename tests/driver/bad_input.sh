@@ -53,8 +53,10 @@ expect_error() {
   if [ "$nprocs" -eq 1 ]; then
     out=$("$perideal" case.prm 2>&1); rc=$?
   else
-    out=$(mpirun --oversubscribe -np "$nprocs" "$perideal" case.prm 2>&1); rc=$?
+    # A failure on one process must stop all of them: a hang is a failure.
+    out=$(timeout 120 mpirun --oversubscribe -np "$nprocs" "$perideal" case.prm 2>&1); rc=$?
   fi
+  [ "$rc" -ne 124 ] || fail "'$edit' hung on $nprocs processes"
   [ "$rc" -ne 0 ] || fail "'$edit' exited with 0"
   grep -qF -- "$expected" <<<"$out" || fail "'$edit': message lacks '$expected': $out"
   [ ! -e out ] || { fail "'$edit' left output behind"; rm -rf out; }
@@ -87,6 +89,17 @@ expect_error 's/set Lower corner = 0, 0/set Lower corner = 0, 0\n  set Mesh = fi
 expect_error "s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/skewed_quad.inp|" \
   "Use a Cartesian mesh"
 expect_error 's/set Dimension = 2/set Dimension = 4/' "Dimension"
+# Checks that fail on one process only (a non-box cell it owns, an output
+# path only some process writes) must stop every process with the message.
+expect_error "s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/skewed_quad.inp|" \
+  "Use a Cartesian mesh" 2
+touch not_a_directory
+expect_error 's|set Directory = out|set Directory = not_a_directory/out|' \
+  "Invalid value 'not_a_directory/out' for the parameter 'Output/Directory'" 2
+expect_error 's|set Directory = out|set Directory = out\n  set Node data file = no-such-dir/nodes.csv|' \
+  "Invalid value 'no-such-dir/nodes.csv' for the parameter 'Output/Node data file'" 2
+expect_error 's|set Directory = out|set Directory = out\n  set Summary file = not_a_directory/summary.csv|' \
+  "Invalid value 'not_a_directory/summary.csv' for the parameter 'Output/Summary file'" 2
 # Boundary treatments: a fictitious layer alone with free faces is singular;
 # surface nodes need equal square cells; the Taylor order is 1..3.
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/; s/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0/' \

@@ -63,8 +63,15 @@ namespace PeriDEAL
       const std::string &
       directory() const;
 
+      /// Whether VTU output is written ('Write VTU').
+      bool
+      enabled() const
+      {
+        return write_vtu;
+      }
+
     private:
-      bool        enabled = true;
+      bool        write_vtu = true;
       std::string output_directory;
       std::string base_name;
     };

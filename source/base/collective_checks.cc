@@ -1,0 +1,61 @@
+#include <perideal/base/collective_checks.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+
+namespace PeriDEAL
+{
+  void
+  throw_on_any_rank(const std::string &local_error, const MPI_Comm comm)
+  {
+    const unsigned int n_failed =
+      dealii::Utilities::MPI::sum(local_error.empty() ? 0u : 1u, comm);
+    if (n_failed == 0)
+      return;
+    for (const auto &message :
+         dealii::Utilities::MPI::all_gather(comm, local_error))
+      if (!message.empty())
+        AssertThrow(false, dealii::ExcMessage(message));
+  }
+
+
+  std::string
+  check_writable_file(const std::string &path)
+  {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::path  file(path);
+    if (fs::is_directory(file, error))
+      return "'" + path + "' is a directory";
+    const fs::path directory =
+      file.has_parent_path() ? file.parent_path() : fs::path(".");
+    if (!fs::is_directory(directory, error))
+      return "the directory '" + directory.string() + "' does not exist";
+    if (access(directory.c_str(), W_OK) != 0)
+      return "the directory '" + directory.string() + "' is not writable";
+    if (fs::exists(file, error) && access(file.c_str(), W_OK) != 0)
+      return "the file exists and is not writable";
+    return "";
+  }
+
+
+  std::string
+  check_writable_directory(const std::string &path)
+  {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    fs::path        p = fs::absolute(fs::path(path), error);
+    while (!p.empty() && !fs::exists(p, error))
+      {
+        if (p == p.parent_path())
+          break;
+        p = p.parent_path();
+      }
+    if (!fs::is_directory(p, error))
+      return "'" + p.string() + "' exists and is not a directory";
+    if (access(p.c_str(), W_OK) != 0)
+      return "the directory '" + p.string() + "' is not writable";
+    return "";
+  }
+} // namespace PeriDEAL
