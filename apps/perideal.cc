@@ -10,7 +10,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <perideal/solvers/quasi_static_simulation.h>
+#include <perideal/problems/simulator.h>
 
 #include <filesystem>
 #include <fstream>
@@ -75,13 +75,13 @@ namespace
   run(const std::string &file)
   {
     ParameterHandler prm;
-    PeriDEAL::Solvers::QuasiStaticSimulation<dim>::declare_parameters(prm);
+    PeriDEAL::Problems::Simulator<dim>::declare_parameters(prm);
     prm.parse_input(file);
     // The simulation is destroyed before an error propagates: its timer
     // then finishes quietly instead of warning about an exception in flight.
     std::string other_error;
     {
-      PeriDEAL::Solvers::QuasiStaticSimulation<dim> simulation(MPI_COMM_WORLD);
+      PeriDEAL::Problems::Simulator<dim> simulation(MPI_COMM_WORLD);
       try
         {
           simulation.parse_parameters(prm);
@@ -106,7 +106,7 @@ namespace
   print_parameters()
   {
     ParameterHandler prm;
-    PeriDEAL::Solvers::QuasiStaticSimulation<dim>::declare_parameters(prm);
+    PeriDEAL::Problems::Simulator<dim>::declare_parameters(prm);
     // The listing must run as it is: it names its own dimension.
     prm.set("Dimension", std::to_string(dim));
     prm.print_parameters(std::cout, ParameterHandler::PRM);

@@ -31,7 +31,12 @@ namespace PeriDEAL
     const fs::path directory =
       file.has_parent_path() ? file.parent_path() : fs::path(".");
     if (!fs::is_directory(directory, error))
-      return "the directory '" + directory.string() + "' does not exist";
+      {
+        // A directory that does not exist yet is created when the file is
+        // written, if it can be.
+        const std::string why = check_writable_directory(directory.string());
+        return why.empty() ? "" : "its directory cannot be created: " + why;
+      }
     if (access(directory.c_str(), W_OK) != 0)
       return "the directory '" + directory.string() + "' is not writable";
     if (fs::exists(file, error) && access(file.c_str(), W_OK) != 0)

@@ -47,10 +47,10 @@ namespace PeriDEAL
   }
 
   /**
-   * Whether the file @p path can be written by this process without
-   * creating it: its directory exists and is writable, and the path is not
-   * a directory or a read-only file. Returns an empty string, or what is
-   * wrong.
+   * Whether the file @p path can be written by this process: its
+   * directory exists and is writable or can be created, and the path is
+   * not a directory or a read-only file. Creates nothing. Returns an empty
+   * string, or what is wrong.
    */
   std::string
   check_writable_file(const std::string &path);

@@ -1,5 +1,5 @@
-#ifndef perideal_solvers_quasi_static_simulation_h
-#define perideal_solvers_quasi_static_simulation_h
+#ifndef perideal_problems_simulator_h
+#define perideal_problems_simulator_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
@@ -12,21 +12,13 @@
 
 #include <deal.II/fe/fe_system.h>
 
-#include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
-
 #include <perideal/boundary/boundary_conditions.h>
 #include <perideal/boundary/boundary_treatment.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/solution_output.h>
 #include <perideal/models/model.h>
-#include <perideal/discretization/bond_state.h>
-#include <perideal/operators/bond_operator.h>
-#include <perideal/operators/constrained_operator.h>
-#include <perideal/operators/fictitious_layer_operator.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
+#include <perideal/problems/problem_type.h>
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/solvers/linear_solver.h>
 
@@ -36,10 +28,8 @@
 
 namespace PeriDEAL
 {
-  namespace Solvers
+  namespace Problems
   {
-    using namespace dealii;
-
     /**
      * Errors of a computed displacement against an analytical one, over the
      * owned nodes of all processes:
@@ -74,7 +64,7 @@ namespace PeriDEAL
       double                        h = 0, horizon = 0;
       std::size_t                   n_bonds    = 0;
       std::size_t                   n_nonzeros = 0;
-      SolverReport                  solver;
+      Solvers::SolverReport         solver;
       double                        equilibrium_residual = 0;
       std::string                   treatment            = "none";
       unsigned int                  taylor_order         = 0;
@@ -88,28 +78,29 @@ namespace PeriDEAL
     };
 
     /**
-     * A quasi-static linear PD problem described entirely by a parameter
-     * file: the tutorial-plain driver behind the `perideal` program.
+     * One PD simulation described entirely by a parameter file: the
+     * tutorial-plain driver behind the `perideal` program.
      *
-     * run() builds the mesh (a subdivided box or a Cartesian mesh read with
-     * GridIn) on a parallel::distributed::Triangulation, places one PD node
-     * at each active cell's centre (NodeSet), exchanges the off-process
-     * nodes within the coupling range, builds the neighbour lists with the
-     * selected partial-volume algorithm, assembles the linearised PD
-     * stiffness in a Trilinos matrix with the volumetric boundary
-     * conditions eliminated, solves with the selected linear solver, checks
-     * equilibrium with the matrix-free force evaluation, compares with an
-     * analytical solution when one is given, and writes PVTU output and a
-     * CSV summary.
+     * The simulator owns what every problem type shares and sets it up in
+     * one path: the mesh (a subdivided box or a Cartesian mesh read with
+     * GridIn, on a parallel::distributed::Triangulation), one PD node per
+     * active cell with the off-process nodes within the coupling range
+     * (NodeSet), the model, the partial-volume algorithm, the boundary
+     * conditions and treatment, the linear solver settings, the analytical
+     * solution for verification, and the output settings. The registered
+     * ProblemType chosen with `Problem type` then builds its bonds and
+     * operators through the simulator (setup_neighbor_lists()) and runs;
+     * run() ends with the phase timings, the peak memory and the summary
+     * CSV.
      *
      * All entries are declared with a pattern and a help text; see
      * `perideal --print-parameters`.
      */
     template <int dim>
-    class QuasiStaticSimulation
+    class Simulator
     {
     public:
-      explicit QuasiStaticSimulation(const MPI_Comm communicator);
+      explicit Simulator(const MPI_Comm communicator);
 
       /**
        * Declare every entry of the input file (the top-level "Dimension"
@@ -125,43 +116,102 @@ namespace PeriDEAL
       void
       parse_parameters(ParameterHandler &prm);
 
-      /**
-       * Run the whole problem and return what it measured.
-       */
+      /// Run the whole problem and return what it measured.
       RunSummary
       run();
 
+      /// @name The shared set-up, for problem types
+      /// @{
+
       /**
-       * The computed displacement (ghosted over the relevant DoFs).
+       * Build the neighbour lists (with lists of the off-process
+       * neighbours for state-based models). @p store_full_lists: also
+       * store the lists of nodes whose neighbourhood is the full stencil.
        */
-      const TrilinosWrappers::MPI::Vector &
-      solution() const;
+      void
+      setup_neighbor_lists(const bool store_full_lists);
+
+      /// Wall time since run() started, in seconds.
+      double
+      elapsed() const;
+
+      /// Print "[ wall time s] @p text" on rank 0.
+      void
+      print_progress(const std::string &text);
+
+      MPI_Comm
+      get_communicator() const;
+
+      ConditionalOStream &
+      get_pcout();
+
+      TimerOutput &
+      get_timer();
+
+      const parallel::distributed::Triangulation<dim> &
+      get_triangulation() const;
+
+      const DoFHandler<dim> &
+      get_dof_handler() const;
+
+      const Discretization::NodeSet<dim> &
+      get_nodes() const;
+
+      const Discretization::NeighborList<dim> &
+      get_neighbor_lists() const;
+
+      const Models::Model<dim> &
+      get_model() const;
+
+      const Quadrature::PartialVolume<dim> &
+      get_partial_volume() const;
+
+      const std::string &
+      get_partial_volume_name() const;
+
+      /// The horizon \f$\delta\f$.
+      double
+      get_horizon() const;
+
+      const Boundary::BoundaryConditions<dim> &
+      get_boundary_conditions() const;
+
+      const Boundary::BoundaryTreatment &
+      get_boundary_treatment() const;
+
+      const std::string &
+      get_boundary_treatment_name() const;
+
+      const Solvers::LinearSolver &
+      get_linear_solver() const;
+
+      /// The analytical displacement, or null without a comparison.
+      const Functions::ParsedFunction<dim> *
+      get_analytical_solution() const;
+
+      const IO::SolutionOutput<dim> &
+      get_output() const;
+
+      /// The per-node CSV file ('Output/Node data file'); may be empty.
+      const std::string &
+      get_node_data_file() const;
+
+      RunSummary &
+      get_summary();
+      /// @}
 
     private:
+      void
+      check_output_paths();
+
       void
       make_mesh();
 
       void
-      setup_nodes_and_bonds();
+      setup_nodes();
 
       void
-      assemble_and_solve();
-
-      /// assemble_and_solve() with a fictitious layer (and surface nodes).
-      void
-      assemble_and_solve_with_layer();
-
-      /// assemble_and_solve() with 'Operator = matrix-free'.
-      void
-      solve_matrix_free();
-
-      void
-      postprocess();
-
-      /// Gather every node's position, displacement and error to the CSV
-      /// named in 'Output/Node data file'.
-      void
-      write_node_data(const Tensor<1, dim> &component_max) const;
+      write_summary_file() const;
 
       const MPI_Comm     communicator;
       ConditionalOStream pcout;
@@ -169,6 +219,7 @@ namespace PeriDEAL
       Timer              wall_clock;
 
       // Input.
+      std::string               problem_name;
       std::string               mesh_kind;
       Point<dim>                lower_corner, upper_corner;
       std::vector<unsigned int> subdivisions;
@@ -182,13 +233,14 @@ namespace PeriDEAL
       std::string               summary_file;
       std::string               node_data_file;
 
+      std::unique_ptr<ProblemType<dim>>               problem;
       std::unique_ptr<Quadrature::PartialVolume<dim>> algorithm;
       std::unique_ptr<Models::Model<dim>>             model;
       std::string                                     treatment_name;
       std::unique_ptr<Boundary::BoundaryTreatment>    treatment;
       Boundary::BoundaryConditions<dim>               boundary_conditions;
       std::unique_ptr<Functions::ParsedFunction<dim>> analytical_solution;
-      LinearSolver                                    linear_solver;
+      Solvers::LinearSolver                           linear_solver;
       IO::SolutionOutput<dim>                         output;
 
       // Discretisation.
@@ -199,26 +251,10 @@ namespace PeriDEAL
       double                                    horizon = 0;
       Discretization::NodeSet<dim>              nodes;
       Discretization::NeighborList<dim>         neighbor_lists;
-      Operators::LinearPeridynamicOperator<dim> pd_operator;
-      Discretization::BondState<dim>            bond_state;
-      Operators::BondOperator<dim>              bond_operator;
-      Operators::ConstrainedOperator<dim>       constrained_operator;
-      TrilinosWrappers::SparseMatrix            local_matrix;
-      Operators::FictitiousLayerOperator<dim>   layer_operator;
-      AffineConstraints<double>                 constraints;
-
-      // Linear system.
-      TrilinosWrappers::SparseMatrix system_matrix;
-      TrilinosWrappers::MPI::Vector  load;
-      TrilinosWrappers::MPI::Vector  system_rhs;
-      TrilinosWrappers::MPI::Vector  displacement;
-      // With surface nodes: their displacements, owned ones, in the order
-      // of FictitiousLayerOperator::owned_surface_nodes().
-      std::vector<Tensor<1, dim>> surface_displacement;
 
       RunSummary summary;
     };
-  } // namespace Solvers
+  } // namespace Problems
 } // namespace PeriDEAL
 
 #endif

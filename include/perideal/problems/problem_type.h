@@ -1,0 +1,80 @@
+#ifndef perideal_problems_problem_type_h
+#define perideal_problems_problem_type_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/base/plugin_registry.h>
+
+#include <string>
+
+namespace PeriDEAL
+{
+  /**
+   * The simulator and the problem types it runs.
+   */
+  namespace Problems
+  {
+    using namespace dealii;
+
+    template <int dim>
+    class Simulator;
+
+    /**
+     * What a run does once the shared set-up (mesh, PD nodes, model,
+     * boundary conditions and treatment, output settings) is in place: a
+     * quasi-static solve, a time loop, a diffusion problem. Each problem type
+     * registers itself by name with PERIDEAL_REGISTER_PROBLEM_TYPE and is
+     * chosen with the top-level entry `Problem type`; its own entries live in
+     * the top-level subsection of the same name. Adding one touches no
+     * central switch.
+     */
+    template <int dim>
+    class ProblemType
+    {
+    public:
+      virtual ~ProblemType() = default;
+
+      /// Read the entries of the problem type's own subsection.
+      virtual void
+      parse_parameters(ParameterHandler &prm) = 0;
+
+      /**
+       * Check entries of the whole input against each other (called after
+       * the simulator has parsed everything); throw ExcInvalidInput naming
+       * the entries otherwise.
+       */
+      virtual void
+      check_input(const Simulator<dim> &simulator) const;
+
+      /**
+       * Run the problem on the set-up of @p simulator: the mesh and the
+       * node set exist; the problem builds bonds, operators, solves or
+       * steps, and writes its output and its part of the run summary.
+       */
+      virtual void
+      run(Simulator<dim> &simulator) = 0;
+
+      static std::string
+      family_name();
+    };
+
+    template <int dim>
+    using ProblemTypeRegistry = PluginRegistry<ProblemType<dim>>;
+  } // namespace Problems
+
+  extern template class PluginRegistry<Problems::ProblemType<2>>;
+  extern template class PluginRegistry<Problems::ProblemType<3>>;
+} // namespace PeriDEAL
+
+/// Register the problem type @p Class (a template over dim) under @p name.
+#define PERIDEAL_REGISTER_PROBLEM_TYPE(Class, name, description) \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<2>,   \
+                          Class<2>,                               \
+                          name,                                   \
+                          description)                            \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<3>,   \
+                          Class<3>,                               \
+                          name,                                   \
+                          description)
+
+#endif

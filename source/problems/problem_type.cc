@@ -1,0 +1,27 @@
+#include <perideal/problems/problem_type.h>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    template <int dim>
+    void
+    ProblemType<dim>::check_input(const Simulator<dim> &) const
+    {}
+
+
+    template <int dim>
+    std::string
+    ProblemType<dim>::family_name()
+    {
+      return "problem type";
+    }
+
+
+    template class ProblemType<2>;
+    template class ProblemType<3>;
+  } // namespace Problems
+
+  template class PluginRegistry<Problems::ProblemType<2>>;
+  template class PluginRegistry<Problems::ProblemType<3>>;
+} // namespace PeriDEAL

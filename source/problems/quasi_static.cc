@@ -1,0 +1,845 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/operators/local_elasticity_operator.h>
+#include <perideal/problems/quasi_static.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    template <int dim>
+    void
+    QuasiStatic<dim>::declare_parameters(ParameterHandler &)
+    {}
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::parse_parameters(ParameterHandler &)
+    {}
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::check_input(const Simulator<dim> &simulator) const
+    {
+      AssertThrow(simulator.get_node_data_file().empty() ||
+                    simulator.get_analytical_solution() != nullptr,
+                  ExcInvalidInput(
+                    "Output/Node data file",
+                    simulator.get_node_data_file(),
+                    "the node data file holds the errors against the "
+                    "analytical solution: set 'Analytical solution/Compare "
+                    "with analytical solution = true', or leave the entry "
+                    "empty"));
+      const auto &name = simulator.get_boundary_treatment_name();
+      AssertThrow(!simulator.get_boundary_treatment().uses_fictitious_layer() ||
+                    !simulator.get_linear_solver().is_matrix_free(),
+                  ExcInvalidInput(
+                    "Linear solver/Operator",
+                    "matrix-free",
+                    "the boundary treatment '" + name +
+                      "' is available with 'Operator = assembled' only so "
+                      "far; set it, or use 'Boundary treatment/Treatment = "
+                      "none'"));
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::run(Simulator<dim> &simulator)
+    {
+      if (simulator.get_boundary_treatment().uses_fictitious_layer())
+        setup_layer_operator(simulator);
+      else
+        {
+          const bool matrix_free =
+            simulator.get_linear_solver().is_matrix_free();
+          // The matrix-free operator evaluates full neighbourhoods with the
+          // shared stencil: their lists need not be stored.
+          simulator.setup_neighbor_lists(!matrix_free);
+          TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
+          const auto &nodes = simulator.get_nodes();
+          const auto &lists = simulator.get_neighbor_lists();
+          if (matrix_free)
+            {
+              bond_state.reinit(nodes, lists);
+              bond_operator.reinit(nodes,
+                                   lists,
+                                   simulator.get_model(),
+                                   simulator.get_horizon(),
+                                   &bond_state);
+            }
+          else
+            pd_operator.reinit(nodes,
+                               lists,
+                               simulator.get_model(),
+                               simulator.get_horizon());
+        }
+      assemble_and_solve(simulator);
+      postprocess(simulator);
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::setup_layer_operator(Simulator<dim> &simulator)
+    {
+      auto       &summary   = simulator.get_summary();
+      const auto &treatment = simulator.get_boundary_treatment();
+      {
+        TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
+        layer_operator.reinit(simulator.get_dof_handler(),
+                              simulator.get_nodes(),
+                              simulator.get_model(),
+                              simulator.get_horizon(),
+                              simulator.get_partial_volume(),
+                              treatment.uses_surface_nodes(),
+                              treatment.taylor_order());
+      }
+      summary.n_bonds = summary.n_nodes * layer_operator.n_neighbours_per_node();
+      summary.n_surface_nodes    = layer_operator.n_surface_nodes();
+      summary.n_fictitious_nodes = layer_operator.n_fictitious_nodes();
+      std::ostringstream line;
+      line << "nodes: " << summary.n_nodes << " in the body, "
+           << summary.n_fictitious_nodes << " fictitious, "
+           << summary.n_surface_nodes << " surface nodes; "
+           << layer_operator.n_neighbours_per_node()
+           << " bonds per node, weights by '"
+           << simulator.get_partial_volume_name() << "'; boundary treatment '"
+           << simulator.get_boundary_treatment_name() << "', Taylor order "
+           << treatment.taylor_order();
+      simulator.print_progress(line.str());
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::assemble_and_solve_with_layer(Simulator<dim> &simulator)
+    {
+      [[maybe_unused]] const MPI_Comm communicator =
+        simulator.get_communicator();
+      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
+      [[maybe_unused]] auto       &timer       = simulator.get_timer();
+      [[maybe_unused]] auto       &summary     = simulator.get_summary();
+      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
+      [[maybe_unused]] const auto &triangulation =
+        simulator.get_triangulation();
+      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
+      [[maybe_unused]] const auto &neighbor_lists =
+        simulator.get_neighbor_lists();
+      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const double horizon = simulator.get_horizon();
+      [[maybe_unused]] const auto &boundary_conditions =
+        simulator.get_boundary_conditions();
+      [[maybe_unused]] const auto &treatment =
+        simulator.get_boundary_treatment();
+      [[maybe_unused]] const auto &treatment_name =
+        simulator.get_boundary_treatment_name();
+      [[maybe_unused]] const auto &linear_solver =
+        simulator.get_linear_solver();
+      [[maybe_unused]] const auto *analytical_solution =
+        simulator.get_analytical_solution();
+      [[maybe_unused]] const auto &output = simulator.get_output();
+      [[maybe_unused]] const auto &node_data_file =
+        simulator.get_node_data_file();
+      const IndexSet &owned_dofs = dof_handler.locally_owned_dofs();
+      const IndexSet &owned      = layer_operator.owned_unknowns();
+      std::map<types::global_dof_index, double> prescribed;
+      {
+        TimerOutput::Scope scope(timer, "assembly");
+        system_rhs.reinit(owned, communicator);
+        boundary_conditions.check_boundary_ids(triangulation);
+        if (treatment.uses_surface_nodes())
+          {
+            // Body force on the body nodes, boundary conditions on the
+            // surface nodes: Dirichlet values where prescribed, the traction
+            // times the face area in the force-flux equation otherwise.
+            for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+              {
+                const Tensor<1, dim> b =
+                  boundary_conditions.body_force_value(nodes[i].location);
+                for (unsigned int c = 0; c < dim; ++c)
+                  system_rhs[layer_operator.unknown_index(nodes[i], c)] =
+                    nodes[i].volume() * b[c];
+              }
+            const auto &mask = boundary_conditions.dirichlet_component_mask();
+            for (const auto &node : layer_operator.owned_surface_nodes())
+              {
+                const bool dirichlet =
+                  boundary_conditions.is_dirichlet_boundary(node.boundary_id);
+                const Tensor<1, dim> g =
+                  dirichlet ? boundary_conditions.dirichlet_value(node.location) :
+                              Tensor<1, dim>();
+                const Tensor<1, dim> p =
+                  boundary_conditions.is_traction_boundary(node.boundary_id) ?
+                    boundary_conditions.traction_value(node.location,
+                                                       node.normal()) :
+                    Tensor<1, dim>();
+                for (unsigned int c = 0; c < dim; ++c)
+                  if (dirichlet && mask[c])
+                    prescribed[node.first_unknown + c] = g[c];
+                  else
+                    system_rhs[node.first_unknown + c] = node.area * p[c];
+              }
+            summary.n_constrained_nodes = Utilities::MPI::sum(
+              static_cast<unsigned int>(prescribed.size()), communicator);
+          }
+        else
+          {
+            // A completed neighbourhood makes every node a bulk node: a
+            // homogeneous strain then costs nothing anywhere, and a free or
+            // loaded face has no equation that could hold it. Only bodies
+            // whose every face is fully prescribed are well posed.
+            bool all_prescribed = true;
+            for (const bool c : boundary_conditions.dirichlet_component_mask())
+              all_prescribed = all_prescribed && c;
+            for (const auto &cell : triangulation.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->at_boundary(f) &&
+                      !boundary_conditions.is_dirichlet_boundary(
+                        cell->face(f)->boundary_id()))
+                    all_prescribed = false;
+            AssertThrow(
+              Utilities::MPI::min(all_prescribed ? 1 : 0, communicator) == 1,
+              ExcInvalidInput(
+                "Boundary treatment/Treatment",
+                treatment_name,
+                "a fictitious layer alone cannot carry free or loaded faces "
+                "(with completed neighbourhoods homogeneous strains cost no "
+                "energy, so the system is singular): list every boundary id "
+                "under 'Dirichlet boundary ids' with all components, or use "
+                "'surface nodes', whose force-flux equations carry "
+                "tractions and free faces"));
+            // Conditions as without treatment: Dirichlet layers. The
+            // unknowns are the DoFs.
+            boundary_conditions.make_constraints(dof_handler,
+                                                 nodes,
+                                                 horizon,
+                                                 constraints);
+            load.reinit(owned_dofs, communicator);
+            boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+            for (const auto dof : owned_dofs)
+              if (constraints.is_constrained(dof))
+                prescribed[dof] = constraints.get_inhomogeneity(dof);
+              else
+                system_rhs[dof] = load[dof];
+            summary.n_constrained_nodes = Utilities::MPI::sum(
+              boundary_conditions.n_constrained_nodes(nodes, constraints),
+              communicator);
+          }
+        system_rhs.compress(VectorOperation::insert);
+        layer_operator.assemble(prescribed, system_matrix, system_rhs);
+      }
+      summary.n_unknowns = owned.size();
+      summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << simulator.elapsed()
+            << " s] assembled: " << summary.n_unknowns << " unknowns, "
+            << summary.n_nonzeros << " nonzeros, "
+            << summary.n_constrained_nodes
+            << (treatment.uses_surface_nodes() ?
+                  " prescribed surface-node components" :
+                  " nodes in Dirichlet layers")
+            << " (non-symmetric)" << std::endl;
+
+      TrilinosWrappers::MPI::Vector solution(owned, communicator);
+      {
+        TimerOutput::Scope scope(timer, "solve");
+        // Rigid translations for AMG: the component of each unknown.
+        std::vector<std::vector<bool>> constant_modes(
+          dim, std::vector<bool>(owned.n_elements(), false));
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            constant_modes[c][owned.index_within_set(
+              layer_operator.unknown_index(nodes[i], c))] = true;
+        for (const auto &node : layer_operator.owned_surface_nodes())
+          for (unsigned int c = 0; c < dim; ++c)
+            constant_modes[c][owned.index_within_set(node.first_unknown + c)] =
+              true;
+        summary.solver = linear_solver.solve(
+          system_matrix, solution, system_rhs, constant_modes, false);
+      }
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << simulator.elapsed() << " s] solved with "
+            << summary.solver.method << ": " << summary.solver.iterations
+            << " iteration(s), relative residual " << std::scientific
+            << std::setprecision(2) << summary.solver.relative_residual
+            << std::defaultfloat << std::endl;
+      // Equilibrium of the assembled system (with a layer there is no
+      // separate matrix-free form): |K u - f| / |K u| over the free rows.
+      {
+        TrilinosWrappers::MPI::Vector ku(owned, communicator);
+        system_matrix.vmult(ku, solution);
+        const double scale = ku.l2_norm();
+        ku -= system_rhs;
+        summary.equilibrium_residual = scale > 0 ? ku.l2_norm() / scale : 0.;
+      }
+      pcout << "           equilibrium check (assembled system): "
+            << "|F_int + F_ext| / |F_int| = " << std::scientific
+            << std::setprecision(2) << summary.equilibrium_residual
+            << std::defaultfloat << std::endl;
+
+      // Body displacements back to the DoF numbering, surface ones aside.
+      TrilinosWrappers::MPI::Vector body(owned_dofs, communicator);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          body[nodes[i].dofs[c]] =
+            solution[layer_operator.unknown_index(nodes[i], c)];
+      body.compress(VectorOperation::insert);
+      displacement.reinit(owned_dofs, nodes.relevant_dofs(), communicator);
+      displacement = body;
+      surface_displacement.clear();
+      for (const auto &node : layer_operator.owned_surface_nodes())
+        {
+          Tensor<1, dim> u;
+          for (unsigned int c = 0; c < dim; ++c)
+            u[c] = solution[node.first_unknown + c];
+          surface_displacement.push_back(u);
+        }
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::solve_matrix_free(Simulator<dim> &simulator)
+    {
+      [[maybe_unused]] const MPI_Comm communicator =
+        simulator.get_communicator();
+      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
+      [[maybe_unused]] auto       &timer       = simulator.get_timer();
+      [[maybe_unused]] auto       &summary     = simulator.get_summary();
+      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
+      [[maybe_unused]] const auto &triangulation =
+        simulator.get_triangulation();
+      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
+      [[maybe_unused]] const auto &neighbor_lists =
+        simulator.get_neighbor_lists();
+      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const double horizon = simulator.get_horizon();
+      [[maybe_unused]] const auto &boundary_conditions =
+        simulator.get_boundary_conditions();
+      [[maybe_unused]] const auto &treatment =
+        simulator.get_boundary_treatment();
+      [[maybe_unused]] const auto &treatment_name =
+        simulator.get_boundary_treatment_name();
+      [[maybe_unused]] const auto &linear_solver =
+        simulator.get_linear_solver();
+      [[maybe_unused]] const auto *analytical_solution =
+        simulator.get_analytical_solution();
+      [[maybe_unused]] const auto &output = simulator.get_output();
+      [[maybe_unused]] const auto &node_data_file =
+        simulator.get_node_data_file();
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+      summary.n_unknowns    = dof_handler.n_dofs();
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      VectorType      load_vector, rhs, prescribed, solution;
+      {
+        TimerOutput::Scope scope(timer, "assembly");
+        boundary_conditions.make_constraints(dof_handler,
+                                             nodes,
+                                             horizon,
+                                             constraints);
+        load.reinit(owned, communicator);
+        boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+        constrained_operator.initialize(bond_operator, constraints);
+        constrained_operator.initialize_dof_vector(load_vector);
+        for (const auto dof : owned)
+          load_vector[dof] = load[dof];
+        constrained_operator.lift(load_vector, rhs, prescribed);
+      }
+      summary.n_constrained_nodes = Utilities::MPI::sum(
+        boundary_conditions.n_constrained_nodes(nodes, constraints),
+        communicator);
+      const unsigned int n_stencil =
+        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), communicator);
+      const std::size_t visits =
+        Utilities::MPI::sum(bond_operator.n_bond_visits(), communicator);
+      const double operator_mb =
+        Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
+                            communicator);
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << simulator.elapsed()
+            << " s] matrix-free operator: " << dof_handler.n_dofs()
+            << " DoFs, " << n_stencil << " nodes on the shared stencil, "
+            << summary.n_nodes - n_stencil << " on lists, "
+            << summary.n_constrained_nodes << " nodes in Dirichlet layers; "
+            << visits << " bond visits per application, "
+            << std::setprecision(1) << operator_mb << " MB, "
+            << MultithreadInfo::n_threads() << " thread(s) per process"
+            << std::defaultfloat << std::endl;
+
+      std::vector<std::vector<bool>> constant_modes;
+      if (linear_solver.preconditioner_name() == "local elasticity")
+        {
+          TimerOutput::Scope scope(timer, "preconditioner setup");
+          Operators::LocalElasticityOperator<dim>::assemble(
+            nodes, neighbor_lists.lattice(), model, constraints, local_matrix);
+          DoFTools::extract_constant_modes(dof_handler,
+                                           ComponentMask(dim, true),
+                                           constant_modes);
+        }
+      constrained_operator.initialize_dof_vector(solution);
+      {
+        TimerOutput::Scope scope(timer, "solve");
+        summary.solver = linear_solver.solve(constrained_operator,
+                                             solution,
+                                             rhs,
+                                             &local_matrix,
+                                             constant_modes);
+      }
+      solution += prescribed;
+      solution.update_ghost_values();
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << simulator.elapsed() << " s] solved with "
+            << summary.solver.method << ": " << summary.solver.iterations
+            << " iteration(s), relative residual " << std::scientific
+            << std::setprecision(2) << summary.solver.relative_residual
+            << std::defaultfloat << std::endl;
+
+      // Equilibrium with the matrix-free forces at every free DoF.
+      VectorType internal;
+      bond_operator.initialize_dof_vector(internal);
+      bond_operator.apply(solution, internal);
+      double free_residual2 = 0, internal2 = 0;
+      for (unsigned int k = 0; k < internal.locally_owned_size(); ++k)
+        {
+          internal2 += std::pow(internal.local_element(k), 2);
+          if (!constrained_operator.is_prescribed(k))
+            free_residual2 += std::pow(internal.local_element(k) +
+                                         load_vector.local_element(k),
+                                       2);
+        }
+      free_residual2 = Utilities::MPI::sum(free_residual2, communicator);
+      internal2      = Utilities::MPI::sum(internal2, communicator);
+      summary.equilibrium_residual =
+        internal2 > 0 ? std::sqrt(free_residual2 / internal2) : 0.;
+      pcout << "           equilibrium check (matrix-free forces): "
+            << "|F_int + F_ext| / |F_int| = " << std::scientific
+            << std::setprecision(2) << summary.equilibrium_residual
+            << std::defaultfloat << std::endl;
+
+      TrilinosWrappers::MPI::Vector owned_solution(owned, communicator);
+      for (const auto dof : owned)
+        owned_solution[dof] = solution[dof];
+      owned_solution.compress(VectorOperation::insert);
+      displacement.reinit(owned, nodes.relevant_dofs(), communicator);
+      displacement = owned_solution;
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::assemble_and_solve(Simulator<dim> &simulator)
+    {
+      [[maybe_unused]] const MPI_Comm communicator =
+        simulator.get_communicator();
+      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
+      [[maybe_unused]] auto       &timer       = simulator.get_timer();
+      [[maybe_unused]] auto       &summary     = simulator.get_summary();
+      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
+      [[maybe_unused]] const auto &triangulation =
+        simulator.get_triangulation();
+      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
+      [[maybe_unused]] const auto &neighbor_lists =
+        simulator.get_neighbor_lists();
+      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const double horizon = simulator.get_horizon();
+      [[maybe_unused]] const auto &boundary_conditions =
+        simulator.get_boundary_conditions();
+      [[maybe_unused]] const auto &treatment =
+        simulator.get_boundary_treatment();
+      [[maybe_unused]] const auto &treatment_name =
+        simulator.get_boundary_treatment_name();
+      [[maybe_unused]] const auto &linear_solver =
+        simulator.get_linear_solver();
+      [[maybe_unused]] const auto *analytical_solution =
+        simulator.get_analytical_solution();
+      [[maybe_unused]] const auto &output = simulator.get_output();
+      [[maybe_unused]] const auto &node_data_file =
+        simulator.get_node_data_file();
+      if (treatment.uses_fictitious_layer())
+        {
+          assemble_and_solve_with_layer(simulator);
+          return;
+        }
+      if (linear_solver.is_matrix_free())
+        {
+          solve_matrix_free(simulator);
+          return;
+        }
+      summary.n_unknowns = dof_handler.n_dofs();
+      const IndexSet &owned    = dof_handler.locally_owned_dofs();
+      const IndexSet  relevant = nodes.relevant_dofs();
+      {
+        TimerOutput::Scope scope(timer, "assembly");
+        boundary_conditions.make_constraints(dof_handler,
+                                             nodes,
+                                             horizon,
+                                             constraints);
+        load.reinit(owned, communicator);
+        boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+        system_rhs = load;
+        pd_operator.assemble(system_matrix, constraints, system_rhs);
+      }
+      summary.n_constrained_nodes = Utilities::MPI::sum(
+        boundary_conditions.n_constrained_nodes(nodes, constraints),
+        communicator);
+      summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << simulator.elapsed()
+            << " s] assembled: " << dof_handler.n_dofs() << " DoFs, "
+            << summary.n_nonzeros << " nonzeros, "
+            << summary.n_constrained_nodes << " nodes in Dirichlet layers"
+            << std::endl;
+
+      // Symmetry of the system, measured: x^T A y against y^T A x.
+      TrilinosWrappers::MPI::Vector x(owned, communicator),
+        y(owned, communicator), ax(owned, communicator),
+        ay(owned, communicator);
+      for (const auto dof : owned)
+        {
+          x[dof] = std::sin(1.3 * dof + 0.2);
+          y[dof] = std::cos(0.7 * dof + 1.1);
+        }
+      x.compress(VectorOperation::insert);
+      y.compress(VectorOperation::insert);
+      system_matrix.vmult(ax, x);
+      system_matrix.vmult(ay, y);
+      const double asymmetry = std::abs(y * ax - x * ay);
+      const bool   symmetric = asymmetry <= 1e-12 * ax.l2_norm() * y.l2_norm();
+
+      TrilinosWrappers::MPI::Vector solution(owned, communicator);
+      {
+        TimerOutput::Scope             scope(timer, "solve");
+        std::vector<std::vector<bool>> constant_modes;
+        DoFTools::extract_constant_modes(dof_handler,
+                                         ComponentMask(dim, true),
+                                         constant_modes);
+        summary.solver = linear_solver.solve(system_matrix,
+                                             solution,
+                                             system_rhs,
+                                             constant_modes,
+                                             symmetric);
+        constraints.distribute(solution);
+      }
+      displacement.reinit(owned, relevant, communicator);
+      displacement = solution;
+      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+            << simulator.elapsed() << " s] solved with "
+            << summary.solver.method << ": " << summary.solver.iterations
+            << " iteration(s), relative residual " << std::scientific
+            << std::setprecision(2) << summary.solver.relative_residual
+            << std::defaultfloat << (symmetric ? "" : " (non-symmetric)")
+            << std::endl;
+
+      // Equilibrium with the matrix-free forces: F_int(u) + F_ext = 0 at
+      // every free DoF.
+      TrilinosWrappers::MPI::Vector internal(owned, communicator);
+      pd_operator.apply(displacement, internal);
+      double free_residual2 = 0;
+      for (const auto dof : owned)
+        if (!constraints.is_constrained(dof))
+          free_residual2 += std::pow(internal[dof] + load[dof], 2);
+      const double scale = internal.l2_norm();
+      free_residual2     = Utilities::MPI::sum(free_residual2, communicator);
+      summary.equilibrium_residual =
+        scale > 0 ? std::sqrt(free_residual2) / scale : 0.;
+      pcout << "           equilibrium check (matrix-free forces): "
+            << "|F_int + F_ext| / |F_int| = " << std::scientific
+            << std::setprecision(2) << summary.equilibrium_residual
+            << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::postprocess(Simulator<dim> &simulator)
+    {
+      [[maybe_unused]] const MPI_Comm communicator =
+        simulator.get_communicator();
+      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
+      [[maybe_unused]] auto       &timer       = simulator.get_timer();
+      [[maybe_unused]] auto       &summary     = simulator.get_summary();
+      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
+      [[maybe_unused]] const auto &triangulation =
+        simulator.get_triangulation();
+      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
+      [[maybe_unused]] const auto &neighbor_lists =
+        simulator.get_neighbor_lists();
+      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const double horizon = simulator.get_horizon();
+      [[maybe_unused]] const auto &boundary_conditions =
+        simulator.get_boundary_conditions();
+      [[maybe_unused]] const auto &treatment =
+        simulator.get_boundary_treatment();
+      [[maybe_unused]] const auto &treatment_name =
+        simulator.get_boundary_treatment_name();
+      [[maybe_unused]] const auto &linear_solver =
+        simulator.get_linear_solver();
+      [[maybe_unused]] const auto *analytical_solution =
+        simulator.get_analytical_solution();
+      [[maybe_unused]] const auto &output = simulator.get_output();
+      [[maybe_unused]] const auto &node_data_file =
+        simulator.get_node_data_file();
+      const unsigned int         n_owned = nodes.n_owned();
+      const bool                 layer   = treatment.uses_fictitious_layer();
+      std::vector<IO::NodeField> fields  = {{"node_volume", {}},
+                                            {"mpi_rank", {}},
+                                            {"constrained", {}}};
+      const double rank = Utilities::MPI::this_mpi_process(communicator);
+      for (unsigned int i = 0; i < n_owned; ++i)
+        {
+          fields[0].values.push_back(nodes[i].volume());
+          fields[1].values.push_back(rank);
+          bool constrained = false;
+          if (!(layer && treatment.uses_surface_nodes()))
+            for (const auto dof : nodes[i].dofs)
+              constrained = constrained || constraints.is_constrained(dof);
+          fields[2].values.push_back(constrained);
+        }
+      if (!layer)
+        {
+          // Quantities of the operator without a layer.
+          std::vector<double> dilatation;
+          const bool          matrix_free = linear_solver.is_matrix_free();
+          if (matrix_free)
+            {
+              LinearAlgebra::distributed::Vector<double> u;
+              bond_operator.initialize_dof_vector(u);
+              for (const auto dof : dof_handler.locally_owned_dofs())
+                u[dof] = displacement[dof];
+              u.update_ghost_values();
+              bond_operator.compute_dilatation(u, dilatation);
+            }
+          else
+            pd_operator.compute_dilatation(displacement, dilatation);
+          const auto &weighted_volumes = matrix_free ?
+                                           bond_operator.weighted_volumes() :
+                                           pd_operator.weighted_volumes();
+          IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
+            neighbours{"n_neighbors", {}};
+          for (unsigned int i = 0; i < n_owned; ++i)
+            {
+              theta.values.push_back(dilatation[i]);
+              m.values.push_back(weighted_volumes[i]);
+              neighbours.values.push_back(neighbor_lists.n_bonds(i));
+            }
+          fields.insert(fields.begin(), {theta, m, neighbours});
+        }
+
+      if (analytical_solution != nullptr)
+        {
+          IO::NodeField  error{"displacement_error", {}};
+          IO::NodeField  normalized{"normalized_error", {}};
+          Vector<double> exact(dim);
+          double         e2 = 0, u2 = 0, e_max = 0, u_max = 0;
+          // Largest analytical magnitude of each component (Eq. 38).
+          Tensor<1, dim> component_max;
+          for (unsigned int i = 0; i < n_owned; ++i)
+            {
+              analytical_solution->vector_value(nodes[i].location, exact);
+              for (unsigned int c = 0; c < dim; ++c)
+                component_max[c] =
+                  std::max(component_max[c], std::abs(exact[c]));
+            }
+          for (unsigned int c = 0; c < dim; ++c)
+            component_max[c] =
+              Utilities::MPI::max(component_max[c], communicator);
+          double normalized_max = 0;
+          for (unsigned int i = 0; i < n_owned; ++i)
+            {
+              analytical_solution->vector_value(nodes[i].location, exact);
+              double e = 0, u = 0, n2 = 0;
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  const double diff =
+                    displacement[nodes[i].dofs[c]] - exact[c];
+                  e += diff * diff;
+                  u += exact[c] * exact[c];
+                  if (component_max[c] > 0)
+                    n2 += std::pow(diff / component_max[c], 2);
+                }
+              e2 += nodes[i].volume() * e;
+              u2 += nodes[i].volume() * u;
+              e_max = std::max(e_max, std::sqrt(e));
+              u_max = std::max(u_max, std::sqrt(u));
+              normalized_max = std::max(normalized_max, std::sqrt(n2));
+              error.values.push_back(std::sqrt(e));
+              normalized.values.push_back(std::sqrt(n2));
+            }
+          summary.errors.max_normalized =
+            Utilities::MPI::max(normalized_max, communicator);
+          if (!node_data_file.empty())
+            write_node_data(simulator, component_max);
+          fields.push_back(normalized);
+          // Surface nodes: the same measure at the face centres.
+          if (layer && treatment.uses_surface_nodes())
+            {
+              double surface_max = 0;
+              const auto &surface = layer_operator.owned_surface_nodes();
+              for (unsigned int k = 0; k < surface.size(); ++k)
+                {
+                  analytical_solution->vector_value(surface[k].location, exact);
+                  double n2 = 0;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    if (component_max[c] > 0)
+                      n2 += std::pow((surface_displacement[k][c] - exact[c]) /
+                                       component_max[c],
+                                     2);
+                  surface_max = std::max(surface_max, std::sqrt(n2));
+                }
+              surface_max = Utilities::MPI::max(surface_max, communicator);
+              pcout << "           surface nodes: largest normalized error "
+                    << std::scientific << std::setprecision(3) << surface_max
+                    << std::defaultfloat << std::endl;
+            }
+          e2                 = Utilities::MPI::sum(e2, communicator);
+          u2                 = Utilities::MPI::sum(u2, communicator);
+          e_max              = Utilities::MPI::max(e_max, communicator);
+          u_max              = Utilities::MPI::max(u_max, communicator);
+          summary.has_errors = true;
+          summary.errors.l2  = u2 > 0 ? std::sqrt(e2 / u2) : std::sqrt(e2);
+          summary.errors.max = u_max > 0 ? e_max / u_max : e_max;
+          fields.push_back(error);
+          pcout << "           error against the analytical solution: "
+                << "relative L2 " << std::scientific << std::setprecision(3)
+                << summary.errors.l2 << ", relative max " << summary.errors.max
+                << ", normalized max (Eq. 38) "
+                << summary.errors.max_normalized << std::defaultfloat
+                << std::endl;
+        }
+
+      TimerOutput::Scope scope(timer, "output");
+      const std::string  record =
+        output.write(dof_handler, nodes, displacement, fields);
+      if (!record.empty())
+        pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+              << simulator.elapsed() << " s] wrote " << output.directory()
+              << "/" << record << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::write_node_data(
+      Simulator<dim>       &simulator,
+      const Tensor<1, dim> &component_max) const
+    {
+      [[maybe_unused]] const MPI_Comm communicator =
+        simulator.get_communicator();
+      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
+      [[maybe_unused]] auto       &timer       = simulator.get_timer();
+      [[maybe_unused]] auto       &summary     = simulator.get_summary();
+      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
+      [[maybe_unused]] const auto &triangulation =
+        simulator.get_triangulation();
+      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
+      [[maybe_unused]] const auto &neighbor_lists =
+        simulator.get_neighbor_lists();
+      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const double horizon = simulator.get_horizon();
+      [[maybe_unused]] const auto &boundary_conditions =
+        simulator.get_boundary_conditions();
+      [[maybe_unused]] const auto &treatment =
+        simulator.get_boundary_treatment();
+      [[maybe_unused]] const auto &treatment_name =
+        simulator.get_boundary_treatment_name();
+      [[maybe_unused]] const auto &linear_solver =
+        simulator.get_linear_solver();
+      [[maybe_unused]] const auto *analytical_solution =
+        simulator.get_analytical_solution();
+      [[maybe_unused]] const auto &output = simulator.get_output();
+      [[maybe_unused]] const auto &node_data_file =
+        simulator.get_node_data_file();
+      // Rows: kind (0 body, 1 surface), x, u, exact, normalized error.
+      std::vector<double> rows;
+      Vector<double>      exact(dim);
+      const auto add = [&](const int kind, const Point<dim> &x,
+                           const Tensor<1, dim> &u) {
+        analytical_solution->vector_value(x, exact);
+        rows.push_back(kind);
+        double n2 = 0;
+        for (unsigned int c = 0; c < dim; ++c)
+          rows.push_back(x[c]);
+        for (unsigned int c = 0; c < dim; ++c)
+          rows.push_back(u[c]);
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            rows.push_back(exact[c]);
+            if (component_max[c] > 0)
+              n2 += std::pow((u[c] - exact[c]) / component_max[c], 2);
+          }
+        rows.push_back(std::sqrt(n2));
+      };
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          Tensor<1, dim> u;
+          for (unsigned int c = 0; c < dim; ++c)
+            u[c] = displacement[nodes[i].dofs[c]];
+          add(0, nodes[i].location, u);
+        }
+      if (treatment.uses_fictitious_layer() && treatment.uses_surface_nodes())
+        {
+          const auto &surface = layer_operator.owned_surface_nodes();
+          for (unsigned int k = 0; k < surface.size(); ++k)
+            add(1, surface[k].location, surface_displacement[k]);
+        }
+      const auto all = Utilities::MPI::gather(communicator, rows, 0);
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      {
+        const std::filesystem::path parent =
+          std::filesystem::path(node_data_file).parent_path();
+        if (!parent.empty())
+          std::filesystem::create_directories(parent);
+      }
+      std::ofstream out(node_data_file);
+      AssertThrow(out,
+                  ExcInvalidInput("Output/Node data file",
+                                  node_data_file,
+                                  "the file cannot be written; check the "
+                                  "directory"));
+      const char *const names[] = {"x", "y", "z"};
+      out << "kind";
+      for (unsigned int c = 0; c < dim; ++c)
+        out << ',' << names[c];
+      for (unsigned int c = 0; c < dim; ++c)
+        out << ",u_" << names[c];
+      for (unsigned int c = 0; c < dim; ++c)
+        out << ",exact_" << names[c];
+      out << ",normalized_error\n" << std::setprecision(12);
+      const unsigned int width = 3 * dim + 2;
+      for (const auto &part : all)
+        for (std::size_t r = 0; r < part.size(); r += width)
+          {
+            out << (part[r] == 0 ? "body" : "surface");
+            for (unsigned int k = 1; k < width; ++k)
+              out << ',' << part[r + k];
+            out << '\n';
+          }
+    }
+
+
+    template class QuasiStatic<2>;
+    template class QuasiStatic<3>;
+  } // namespace Problems
+} // namespace PeriDEAL
+
+PERIDEAL_REGISTER_PROBLEM_TYPE(
+  PeriDEAL::Problems::QuasiStatic,
+  "quasi-static",
+  "The linear quasi-static PD problem K u = V b with volumetric Dirichlet "
+  "layers, body forces and tractions; assembled or matrix-free.")
