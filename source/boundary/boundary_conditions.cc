@@ -7,6 +7,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/base/collective_checks.h>
 #include <perideal/boundary/boundary_conditions.h>
 
 #include <algorithm>
@@ -338,17 +339,30 @@ namespace PeriDEAL
         }
 
       // The Dirichlet faces of all processes (a layer can be several cells
-      // thick and cross partition boundaries), in an R-tree.
-      std::vector<BoundingBox<dim>> local_faces;
+      // thick and cross partition boundaries), one R-tree per boundary id,
+      // so that a listed id whose layer holds no node can be named.
+      std::vector<std::vector<BoundingBox<dim>>> local_faces(
+        dirichlet_ids.size());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int f : cell->face_indices())
             if (on_boundary(cell, f, dirichlet_ids))
-              local_faces.push_back(face_box<dim>(cell, f));
-      std::vector<BoundingBox<dim>> faces;
-      for (const auto &part : Utilities::MPI::all_gather(comm, local_faces))
-        faces.insert(faces.end(), part.begin(), part.end());
-      const auto tree = pack_rtree(faces);
+              {
+                const auto id = cell->face(f)->boundary_id();
+                const auto k  = std::find(dirichlet_ids.begin(),
+                                         dirichlet_ids.end(),
+                                         id) -
+                               dirichlet_ids.begin();
+                local_faces[k].push_back(face_box<dim>(cell, f));
+              }
+      std::vector<decltype(pack_rtree(std::vector<BoundingBox<dim>>()))> trees;
+      for (unsigned int k = 0; k < dirichlet_ids.size(); ++k)
+        {
+          std::vector<BoundingBox<dim>> faces;
+          for (const auto &part : Utilities::MPI::all_gather(comm, local_faces[k]))
+            faces.insert(faces.end(), part.begin(), part.end());
+          trees.push_back(pack_rtree(faces));
+        }
 
       const double thickness = layer_thickness * horizon;
       // Nodes at exactly the layer thickness (horizons at half-integer
@@ -357,30 +371,62 @@ namespace PeriDEAL
       const double                  limit = thickness * (1 - 1e-10);
       Vector<double>                g(dim);
       std::vector<BoundingBox<dim>> candidates;
-      for (const auto &node : nodes.nodes())
+      std::vector<unsigned int>     nodes_of_id(dirichlet_ids.size(), 0);
+      std::string                   non_finite;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
         {
+          const auto      &node = nodes[i];
           BoundingBox<dim> search(std::make_pair(node.location, node.location));
           search.extend(thickness);
-          candidates.clear();
-          tree.query(boost::geometry::index::intersects(search),
-                     std::back_inserter(candidates));
           bool inside = false;
-          for (const auto &face : candidates)
-            if (distance_squared(face, node.location) < limit * limit)
-              {
-                inside = true;
-                break;
-              }
+          for (unsigned int k = 0; k < trees.size(); ++k)
+            {
+              candidates.clear();
+              trees[k].query(boost::geometry::index::intersects(search),
+                             std::back_inserter(candidates));
+              for (const auto &face : candidates)
+                if (distance_squared(face, node.location) < limit * limit)
+                  {
+                    inside = true;
+                    if (i < nodes.n_owned())
+                      ++nodes_of_id[k];
+                    break;
+                  }
+            }
           if (!inside)
             continue;
           dirichlet_displacement->vector_value(node.location, g);
           for (unsigned int c = 0; c < dim; ++c)
             if (dirichlet_components[c])
               {
+                if (!std::isfinite(g[c]) && non_finite.empty())
+                  {
+                    std::ostringstream where;
+                    where << "Invalid value for the parameter 'Boundary "
+                             "conditions/Dirichlet displacement/Function "
+                             "expression': component "
+                          << c << " is " << g[c] << " at the node ("
+                          << node.location
+                          << "); give an expression that is finite in every "
+                             "Dirichlet layer.";
+                    non_finite = where.str();
+                  }
                 constraints.add_line(node.dofs[c]);
                 constraints.set_inhomogeneity(node.dofs[c], g[c]);
               }
         }
+      throw_on_any_rank(non_finite, comm);
+      for (unsigned int k = 0; k < dirichlet_ids.size(); ++k)
+        AssertThrow(
+          Utilities::MPI::sum(nodes_of_id[k], comm) > 0,
+          ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
+                          std::to_string(layer_thickness),
+                          "the Dirichlet layer of boundary id " +
+                            std::to_string(dirichlet_ids[k]) + " (" +
+                            std::to_string(thickness) +
+                            " thick) holds no node centre, so it prescribes "
+                            "nothing; use a layer of at least half a cell (a "
+                            "thickness above h / (2 horizon))"));
       constraints.close();
 
       const unsigned int n_free =
@@ -462,6 +508,21 @@ namespace PeriDEAL
                   }
         }
       load.compress(VectorOperation::add);
+
+      // Non-finite loads (an expression that divides by zero somewhere)
+      // are named before anything is solved with them.
+      std::string non_finite;
+      for (const auto dof : load.locally_owned_elements())
+        if (!std::isfinite(load[dof]))
+          {
+            non_finite =
+              "The load is not finite at DoF " + std::to_string(dof) +
+              ": check the expressions of 'Boundary conditions/Body force' "
+              "and 'Boundary conditions/Traction' (or 'Boundary stress'); "
+              "they must be finite on the whole body and its loaded faces.";
+            break;
+          }
+      throw_on_any_rank(non_finite, dof_handler.get_communicator());
     }
 
 

@@ -4,6 +4,8 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/lac/lapack_full_matrix.h>
+
 #include <perideal/base/exceptions.h>
 #include <perideal/operators/local_elasticity_operator.h>
 #include <perideal/problems/quasi_static.h>
@@ -11,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -352,6 +355,7 @@ namespace PeriDEAL
                                              nodes,
                                              horizon,
                                              constraints);
+        check_rigid_motions(simulator);
         load.reinit(owned, communicator);
         boundary_conditions.add_load(dof_handler, nodes, constraints, load);
         constrained_operator.initialize(bond_operator, constraints);
@@ -489,6 +493,7 @@ namespace PeriDEAL
                                              nodes,
                                              horizon,
                                              constraints);
+        check_rigid_motions(simulator);
         load.reinit(owned, communicator);
         boundary_conditions.add_load(dof_handler, nodes, constraints, load);
         system_rhs = load;
@@ -830,6 +835,100 @@ namespace PeriDEAL
               out << ',' << part[r + k];
             out << '\n';
           }
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::check_rigid_motions(Simulator<dim> &simulator) const
+    {
+      // The rigid motions (translations, rotations about the body's centre
+      // in units of its size) restricted to the prescribed DoFs: the Gram
+      // matrix M^T M adds up over processes, and a (near) null vector is a
+      // rigid motion that no Dirichlet condition holds. A direct solver
+      // would return one of infinitely many solutions without complaint.
+      const auto        &nodes   = simulator.get_nodes();
+      const MPI_Comm     comm    = simulator.get_communicator();
+      constexpr unsigned n_modes = dim * (dim + 1) / 2;
+      Point<dim>         lower, upper;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d] = std::numeric_limits<double>::max();
+          upper[d] = -std::numeric_limits<double>::max();
+        }
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lower[d] = std::min(lower[d], nodes[i].location[d]);
+            upper[d] = std::max(upper[d], nodes[i].location[d]);
+          }
+      double size = 0;
+      Point<dim> centre;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d]  = Utilities::MPI::min(lower[d], comm);
+          upper[d]  = Utilities::MPI::max(upper[d], comm);
+          centre[d] = 0.5 * (lower[d] + upper[d]);
+          size      = std::max(size, upper[d] - lower[d]);
+        }
+      auto mode = [&](const unsigned int r, const Point<dim> &p,
+                      const unsigned int c) -> double {
+        if (r < dim)
+          return r == c ? 1. : 0.;
+        const Tensor<1, dim> x = (p - centre) / size;
+        if constexpr (dim == 2)
+          return c == 0 ? -x[1] : x[0];
+        else
+          {
+            // Rotations about the x, y and z axes.
+            const unsigned int a = r - dim, b = (a + 1) % 3, e = (a + 2) % 3;
+            return c == b ? -x[e] : (c == e ? x[b] : 0.);
+          }
+      };
+      std::vector<double> gram(n_modes * n_modes, 0.);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (constraints.is_constrained(nodes[i].dofs[c]))
+            for (unsigned int p = 0; p < n_modes; ++p)
+              for (unsigned int q = 0; q < n_modes; ++q)
+                gram[p * n_modes + q] += mode(p, nodes[i].location, c) *
+                                         mode(q, nodes[i].location, c);
+      Utilities::MPI::sum(gram, comm, gram);
+      LAPACKFullMatrix<double> matrix(n_modes, n_modes);
+      for (unsigned int p = 0; p < n_modes; ++p)
+        for (unsigned int q = 0; q < n_modes; ++q)
+          matrix(p, q) = gram[p * n_modes + q];
+      Vector<double>     eigenvalues;
+      FullMatrix<double> eigenvectors;
+      matrix.compute_eigenvalues_symmetric(-1., 1e300, 0., eigenvalues,
+                                           eigenvectors);
+      const double largest = eigenvalues.linfty_norm();
+      const char  *axes[]  = {"x", "y", "z"};
+      std::string  free_modes;
+      for (unsigned int k = 0; k < eigenvalues.size(); ++k)
+        if (!(eigenvalues[k] > 1e-10 * largest) || largest == 0)
+          {
+            unsigned int dominant = 0;
+            for (unsigned int p = 1; p < n_modes; ++p)
+              if (std::abs(eigenvectors(p, k)) >
+                  std::abs(eigenvectors(dominant, k)))
+                dominant = p;
+            free_modes += std::string(free_modes.empty() ? "" : ", ") +
+                          (dominant < dim ?
+                             std::string("translation in ") + axes[dominant] :
+                             dim == 2 ?
+                             std::string("rotation in the x-y plane") :
+                             std::string("rotation about ") +
+                               axes[dominant - dim]);
+          }
+      AssertThrow(free_modes.empty(),
+                  ExcInvalidInput(
+                    "Boundary conditions/Dirichlet boundary ids",
+                    simulator.get_boundary_conditions().dirichlet_ids_string(),
+                    "the Dirichlet layers leave a rigid motion free (" +
+                      free_modes +
+                      "), so the system is singular; prescribe the missing "
+                      "components ('Dirichlet components') or more boundaries"));
     }
 
 

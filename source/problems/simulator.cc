@@ -476,6 +476,17 @@ namespace PeriDEAL
       }
       summary.n_bonds =
         Utilities::MPI::sum(neighbor_lists.n_owned_bonds(), communicator);
+      AssertThrow(summary.n_bonds > 0,
+                  ExcInvalidInput(horizon_specification == "m-ratio" ?
+                                    "Horizon/m-ratio" :
+                                    "Horizon/Length",
+                                  to_string(horizon_specification == "m-ratio" ?
+                                              m_ratio :
+                                              horizon_length),
+                                  "the horizon " + to_string(horizon) +
+                                    " reaches no neighbour, so there is no "
+                                    "bond; give an m-ratio above 0.5 (above 1 "
+                                    "for full volumes), typically 3"));
       std::ostringstream line;
       line << "nodes: " << summary.n_nodes << " ("
            << Utilities::MPI::sum(nodes.n_ghost(), communicator)

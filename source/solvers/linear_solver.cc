@@ -7,6 +7,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/solvers/linear_solver.h>
 
+#include <cmath>
 #include <memory>
 
 namespace PeriDEAL
@@ -289,6 +290,22 @@ namespace PeriDEAL
       TrilinosWrappers::MPI::Vector residual(rhs);
       report.relative_residual =
         matrix.residual(residual, solution, rhs) / rhs_norm;
+      // A direct solver "solves" a singular system too: its residual tells.
+      AssertThrow(std::isfinite(report.relative_residual),
+                  ExcMessage("The linear solve (" + report.method +
+                             ") produced non-finite values (NaN or Inf): "
+                             "the system is singular. Check that the "
+                             "Dirichlet conditions fix every rigid motion "
+                             "(every displacement component, and rotations)."));
+      AssertThrow(method_name != "direct" || report.relative_residual <= 1e-6,
+                  ExcMessage("The direct solver (" + report.method +
+                             ") returned a solution with relative residual " +
+                             std::to_string(report.relative_residual) +
+                             ": the system is singular or nearly so. Most "
+                             "often a rigid motion is not fixed: list "
+                             "'Boundary conditions/Dirichlet boundary ids' "
+                             "whose layers fix every displacement component "
+                             "('Dirichlet components') and the rotations."));
       report.seconds = timer.wall_time();
       return report;
     }

@@ -111,6 +111,22 @@ expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatme
   "need a uniform grid of equal cubes" 2
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\n  subsection surface nodes\n    set Taylor order = 4\n  end\nend/' \
   "Taylor order"
+# Wrong answers that used to exit with 0: non-finite boundary values or
+# loads, a singular system "solved" by the direct solver, a Dirichlet layer
+# that holds no node, a horizon that reaches no neighbour.
+expect_error 's/set Function expression = 1e-3\*x; 0/set Function expression = 1e-3\/(x - x); 0/' \
+  "Invalid value for the parameter 'Boundary conditions/Dirichlet displacement/Function expression'" 2
+expect_error 's/  subsection Dirichlet displacement/  subsection Body force\n    set Function expression = sqrt(-1); 0\n  end\n  subsection Dirichlet displacement/' \
+  "Boundary conditions/Body force" 2
+expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0\n  set Dirichlet components = x/' \
+  "the Dirichlet layers leave a rigid motion free (translation in y)"
+expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids =/' \
+  "the Dirichlet layers leave a rigid motion free (translation in x, translation in y, rotation in the x-y plane)" 2
+expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0, 1, 2, 3\n  set Dirichlet layer thickness = 0.1/' \
+  "the Dirichlet layer of boundary id 0 (0.03" 2
+expect_error 's/set m-ratio = 3/set m-ratio = 0.4/' \
+  "Invalid value '0.4' for the parameter 'Horizon/m-ratio': the horizon 0.04 reaches no neighbour"
+
 # The matrix-free operator: no direct solver and no preconditioner that
 # needs the PD matrix; its own preconditioners need 'matrix-free'; a zero
 # tolerance is unreachable; layer treatments are assembled-only so far.

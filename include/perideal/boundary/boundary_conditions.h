@@ -129,6 +129,16 @@ namespace PeriDEAL
       Tensor<1, dim>
       traction_value(const Point<dim> &p, const Tensor<1, dim> &normal) const;
 
+      /// The Dirichlet boundary ids as given, comma-separated.
+      std::string
+      dirichlet_ids_string() const
+      {
+        std::string s;
+        for (const auto id : dirichlet_ids)
+          s += (s.empty() ? "" : ", ") + std::to_string(id);
+        return s;
+      }
+
     private:
       std::vector<types::boundary_id> dirichlet_ids;
       std::vector<bool>               dirichlet_components;

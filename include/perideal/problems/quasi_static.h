@@ -74,6 +74,11 @@ namespace PeriDEAL
       void
       postprocess(Simulator<dim> &simulator);
 
+      /// Stop with the free rigid motions named when the Dirichlet
+      /// conditions do not fix all of them (the system would be singular).
+      void
+      check_rigid_motions(Simulator<dim> &simulator) const;
+
       /// Gather every node's position, displacement and error to the CSV
       /// named in 'Output/Node data file'.
       void
