@@ -3,9 +3,11 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/base/collective_checks.h>
 #include <perideal/io/solution_output.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace PeriDEAL
 {
@@ -67,12 +69,22 @@ namespace PeriDEAL
     {
       if (!write_vtu)
         return "";
-      const MPI_Comm comm = dof_handler.get_communicator();
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        std::filesystem::create_directories(output_directory);
-      MPI_Barrier(comm);
-
-      // Owned nodes follow the locally owned active cells in order.
+      const MPI_Comm     comm    = dof_handler.get_communicator();
+      const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+      const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+      {
+        std::string error;
+        if (rank == 0)
+          {
+            std::error_code code;
+            std::filesystem::create_directories(output_directory, code);
+            if (code || !std::filesystem::is_directory(output_directory))
+              error = "Invalid value '" + output_directory +
+                      "' for the parameter 'Output/Directory': it cannot be "
+                      "created (" + code.message() + ").";
+          }
+        throw_on_any_rank(error, comm);
+      }
       const auto                &tria = dof_handler.get_triangulation();
       std::vector<Vector<float>> cell_data(fields.size(),
                                            Vector<float>(
@@ -104,10 +116,60 @@ namespace PeriDEAL
                                  fields[f].name,
                                  DataOut<dim>::type_cell_data);
       data_out.build_patches();
-      return data_out.write_vtu_with_pvtu_record(output_directory + "/",
-                                                 base_name,
-                                                 0,
-                                                 comm);
+
+      // Every file is written under a temporary name and renamed when
+      // complete: a run killed while writing leaves the previous good
+      // output, never a truncated one. Pieces first, then the record that
+      // names them.
+      const auto piece = [&](const unsigned int r) {
+        return base_name + "_0." + std::to_string(r) + ".vtu";
+      };
+      const auto write_and_rename = [&](const std::string &name,
+                                        const auto        &write) {
+        const std::string final_name = output_directory + "/" + name;
+        const std::string temporary  = final_name + ".tmp";
+        std::string       error;
+        {
+          std::ofstream out(temporary);
+          if (out)
+            write(out);
+          out.close();
+          if (!out)
+            error = "Writing '" + temporary + "' failed (disk full?).";
+        }
+        std::error_code code;
+        if (error.empty())
+          std::filesystem::rename(temporary, final_name, code);
+        if (code)
+          error = "Renaming '" + temporary + "' failed: " + code.message();
+        if (!error.empty())
+          std::filesystem::remove(temporary, code);
+        return error;
+      };
+      throw_on_any_rank(write_and_rename(piece(rank),
+                                         [&](std::ostream &out) {
+                                           data_out.write_vtu(out);
+                                         }),
+                        comm);
+      const std::string record = base_name + "_0.pvtu";
+      std::string       error;
+      if (rank == 0)
+        {
+          // Pieces of an earlier run on more processes are stale now.
+          std::error_code code;
+          for (unsigned int r = n_ranks;; ++r)
+            if (!std::filesystem::remove(output_directory + "/" + piece(r),
+                                         code))
+              break;
+          std::vector<std::string> pieces;
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            pieces.push_back(piece(r));
+          error = write_and_rename(record, [&](std::ostream &out) {
+            data_out.write_pvtu_record(out, pieces);
+          });
+        }
+      throw_on_any_rank(error, comm);
+      return record;
     }
 
 

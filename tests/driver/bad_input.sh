@@ -43,6 +43,15 @@ end
 PRM
 "$perideal" base.prm > base.log 2>&1 || { cat base.log; fail "the valid base input failed"; }
 [ -f out/solution_0.pvtu ] || fail "the valid base input wrote no out/solution_0.pvtu"
+# Output is renamed into place: a 1-process run after a 2-process run leaves
+# one piece (no stale second piece), and no temporary file remains.
+timeout 120 mpirun --oversubscribe -np 2 "$perideal" base.prm > base2.log 2>&1 \
+  || { cat base2.log; fail "the valid base input failed on 2 processes"; }
+[ "$(ls out/*.vtu | wc -l)" -eq 2 ] || fail "2 processes did not write 2 pieces"
+"$perideal" base.prm > base.log 2>&1 || fail "the valid base input failed again"
+[ "$(ls out/*.vtu | wc -l)" -eq 1 ] || fail "a stale piece of the 2-process run remains: $(ls out)"
+grep -q "solution_0.1.vtu" out/solution_0.pvtu && fail "the record names a stale piece"
+ls out/*.tmp > /dev/null 2>&1 && fail "temporary files remain: $(ls out)"
 rm -rf out
 
 # expect_error "sed expression" "substring of the message" [nprocs]
