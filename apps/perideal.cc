@@ -119,8 +119,8 @@ main(int argc, char **argv)
 {
   // "--threads N" is taken out of the arguments before anything else; the
   // thread pool is sized when MPI starts.
-  unsigned int       n_threads = numbers::invalid_unsigned_int;
-  std::string        threads_error;
+  unsigned int        n_threads = numbers::invalid_unsigned_int;
+  std::string         threads_error;
   std::vector<char *> args = {argv[0]};
   for (int a = 1; a < argc; ++a)
     if (std::string(argv[a]) == "--threads")
@@ -134,8 +134,9 @@ main(int argc, char **argv)
               n = 0;
           }
         if (n < 1)
-          threads_error = "perideal: --threads takes a positive integer, not '" +
-                          std::string(a + 1 < argc ? argv[a + 1] : "") + "'.";
+          threads_error =
+            "perideal: --threads takes a positive integer, not '" +
+            std::string(a + 1 < argc ? argv[a + 1] : "") + "'.";
         else
           n_threads = n;
         ++a;
@@ -143,8 +144,8 @@ main(int argc, char **argv)
     else
       args.push_back(argv[a]);
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, n_threads);
-  argc = args.size();
-  argv = args.data();
+  argc            = args.size();
+  argv            = args.data();
   const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   if (!threads_error.empty())
     {

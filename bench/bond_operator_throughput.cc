@@ -49,7 +49,7 @@ namespace
   stream_triad(const std::size_t n)
   {
     std::vector<double> a(n), b(n, 1.), c(n, 2.);
-    auto triad = [&]() {
+    auto                triad = [&]() {
       parallel::apply_to_subranges(
         std::size_t(0),
         n,
@@ -75,19 +75,21 @@ namespace
 
   struct Result
   {
-    double seconds_per_apply  = 0;
-    double reference_seconds  = 0;
-    std::size_t visits        = 0;
-    unsigned int stencil      = 0;
-    unsigned int n_nodes      = 0;
-    double bytes_per_apply    = 0;
+    double       seconds_per_apply = 0;
+    double       reference_seconds = 0;
+    std::size_t  visits            = 0;
+    unsigned int stencil           = 0;
+    unsigned int n_nodes           = 0;
+    double       bytes_per_apply   = 0;
   };
 
   template <int dim>
   Result
-  measure(const std::string &model_name, const unsigned int refinements,
-          const double m_ratio, const unsigned int repetitions,
-          const bool with_reference)
+  measure(const std::string &model_name,
+          const unsigned int refinements,
+          const double       m_ratio,
+          const unsigned int repetitions,
+          const bool         with_reference)
   {
     const MPI_Comm                            comm = MPI_COMM_WORLD;
     parallel::distributed::Triangulation<dim> tria(comm);
@@ -105,13 +107,16 @@ namespace
     prm.leave_subsection();
     const auto model = Models::ModelRegistry<dim>::create(model_name, prm);
 
-    const double h       = 1. / (1u << refinements);
-    const double horizon = m_ratio * h;
+    const double                 h       = 1. / (1u << refinements);
+    const double                 horizon = m_ratio * h;
     Discretization::NodeSet<dim> nodes;
     nodes.reinit(dof_handler, 2 * (horizon + std::sqrt(dim) * h));
     const PeriDEAL::Quadrature::ExactPartialVolume<dim> exact;
-    Discretization::NeighborList<dim>         lists;
-    lists.reinit(nodes, horizon, exact, model->is_state_based(),
+    Discretization::NeighborList<dim>                   lists;
+    lists.reinit(nodes,
+                 horizon,
+                 exact,
+                 model->is_state_based(),
                  with_reference);
     Operators::BondOperator<dim> op;
     op.reinit(nodes, lists, *model, horizon);
@@ -132,15 +137,15 @@ namespace
       }
     Result result;
     result.seconds_per_apply = Utilities::MPI::max(best, comm);
-    result.visits  = Utilities::MPI::sum(op.n_bond_visits(), comm);
-    result.stencil = Utilities::MPI::sum(op.n_stencil_nodes(), comm);
-    result.n_nodes = tria.n_global_active_cells();
+    result.visits            = Utilities::MPI::sum(op.n_bond_visits(), comm);
+    result.stencil           = Utilities::MPI::sum(op.n_stencil_nodes(), comm);
+    result.n_nodes           = tria.n_global_active_cells();
     // Least traffic of one application per owned node: copy in (read the
     // vector, write the slots), dilatation pass (read u, write s theta),
     // force pass (read u, s theta, s; write f), copy out.
-    const double doubles = model->is_state_based() ?
-                             (2 * dim) + (dim + 1) + (dim + 2 + dim) + 2 * dim :
-                             (2 * dim) + (dim + dim) + 2 * dim;
+    const double doubles   = model->is_state_based() ?
+                               (2 * dim) + (dim + 1) + (dim + 2 + dim) + 2 * dim :
+                               (2 * dim) + (dim + dim) + 2 * dim;
     result.bytes_per_apply = 8. * doubles * result.n_nodes;
 
     if (with_reference)
@@ -148,7 +153,8 @@ namespace
         Operators::LinearPeridynamicOperator<dim> reference;
         reference.reinit(nodes, lists, *model, horizon);
         TrilinosWrappers::MPI::Vector ut(reference.owned_dofs(),
-                                         nodes.relevant_dofs(), comm),
+                                         nodes.relevant_dofs(),
+                                         comm),
           uo(reference.owned_dofs(), comm), ft(reference.owned_dofs(), comm);
         for (const auto dof : reference.owned_dofs())
           uo[dof] = u[dof];
@@ -166,11 +172,12 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv,
+  Utilities::MPI::MPI_InitFinalize mpi(argc,
+                                       argv,
                                        numbers::invalid_unsigned_int);
-  const MPI_Comm comm = MPI_COMM_WORLD;
-  bool           quick = false;
-  std::string    output_dir = "results/bond_operator";
+  const MPI_Comm                   comm       = MPI_COMM_WORLD;
+  bool                             quick      = false;
+  std::string                      output_dir = "results/bond_operator";
   for (int a = 1; a < argc; ++a)
     {
       const std::string arg = argv[a];
@@ -185,8 +192,8 @@ main(int argc, char **argv)
           return 1;
         }
     }
-  const bool         root      = Utilities::MPI::this_mpi_process(comm) == 0;
-  const unsigned int n_ranks   = Utilities::MPI::n_mpi_processes(comm);
+  const bool         root        = Utilities::MPI::this_mpi_process(comm) == 0;
+  const unsigned int n_ranks     = Utilities::MPI::n_mpi_processes(comm);
   const unsigned int max_threads = MultithreadInfo::n_threads();
   if (root)
     std::filesystem::create_directories(output_dir);
@@ -232,11 +239,18 @@ main(int argc, char **argv)
     for (unsigned int t = 1; t <= max_threads; ++t)
       {
         MultithreadInfo::set_thread_limit(t);
-        const bool reference = (t == 1) && c.refinements <= (c.dim == 3 ? 5 : 8);
-        const Result r =
-          c.dim == 3 ?
-            measure<3>(c.model, c.refinements, c.m_ratio, repetitions, reference) :
-            measure<2>(c.model, c.refinements, c.m_ratio, repetitions, reference);
+        const bool reference =
+          (t == 1) && c.refinements <= (c.dim == 3 ? 5 : 8);
+        const Result r     = c.dim == 3 ? measure<3>(c.model,
+                                                 c.refinements,
+                                                 c.m_ratio,
+                                                 repetitions,
+                                                 reference) :
+                                          measure<2>(c.model,
+                                                 c.refinements,
+                                                 c.m_ratio,
+                                                 repetitions,
+                                                 reference);
         const double rate  = r.visits / r.seconds_per_apply;
         const double cores = double(t) * n_ranks;
         const double fraction =
@@ -245,8 +259,8 @@ main(int argc, char **argv)
           {
             std::cout << c.dim << "D " << std::setw(25) << std::left << c.model
                       << std::right << " nodes " << std::setw(8) << r.n_nodes
-                      << "  ranks " << n_ranks << "  threads " << t
-                      << ": " << std::setprecision(3) << std::scientific
+                      << "  ranks " << n_ranks << "  threads " << t << ": "
+                      << std::setprecision(3) << std::scientific
                       << r.seconds_per_apply << " s/apply, "
                       << rate / cores / 1e6 << std::defaultfloat
                       << " M bond visits/s/core, " << std::setprecision(3)
@@ -261,8 +275,8 @@ main(int argc, char **argv)
                 << r.n_nodes << ',' << r.stencil << ',' << n_ranks << ',' << t
                 << ',' << std::setprecision(6) << r.seconds_per_apply << ','
                 << r.visits << ',' << rate << ',' << rate / cores << ','
-                << bandwidth[t] << ',' << fraction << ','
-                << r.reference_seconds << '\n';
+                << bandwidth[t] << ',' << fraction << ',' << r.reference_seconds
+                << '\n';
           }
       }
   return 0;

@@ -6,8 +6,8 @@
 
 #include <deal.II/numerics/rtree.h>
 
-#include <perideal/base/exceptions.h>
 #include <perideal/base/collective_checks.h>
+#include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_conditions.h>
 
 #include <algorithm>
@@ -201,7 +201,8 @@ namespace PeriDEAL
       for (const auto &c : components)
         dirichlet_components[c[0] - 'x'] = true;
 
-      layer_thickness = prm.get_double("Dirichlet layer thickness");
+      layer_thickness      = prm.get_double("Dirichlet layer thickness");
+      layer_thickness_text = prm.get("Dirichlet layer thickness");
       AssertThrow(
         dirichlet_ids.empty() || layer_thickness > 0,
         ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
@@ -210,22 +211,22 @@ namespace PeriDEAL
 
       dirichlet_displacement =
         parse_vector_function<dim>(prm, "Dirichlet displacement");
-      body_force = parse_vector_function<dim>(prm, "Body force");
-      traction   = parse_vector_function<dim>(prm, "Traction");
+      body_force           = parse_vector_function<dim>(prm, "Body force");
+      traction             = parse_vector_function<dim>(prm, "Traction");
       traction_from_stress = prm.get("Traction given as") == "stress tensor";
       prm.enter_subsection("Boundary stress");
       {
         const std::string expression = prm.get("Function expression");
         const auto        n_given =
           Utilities::split_string_list(expression, ';').size();
-        AssertThrow(n_given == dim * dim,
-                    ExcInvalidInput(
-                      "Boundary conditions/Boundary stress/Function "
-                      "expression",
-                      expression,
-                      "give " + std::to_string(dim * dim) +
-                        " expressions separated by ';', the stress tensor "
-                        "row by row (tau_11; tau_12; ...)"));
+        AssertThrow(
+          n_given == dim * dim,
+          ExcInvalidInput("Boundary conditions/Boundary stress/Function "
+                          "expression",
+                          expression,
+                          "give " + std::to_string(dim * dim) +
+                            " expressions separated by ';', the stress tensor "
+                            "row by row (tau_11; tau_12; ...)"));
         boundary_stress =
           std::make_unique<Functions::ParsedFunction<dim>>(dim * dim);
         boundary_stress->parse_parameters(prm);
@@ -349,17 +350,17 @@ namespace PeriDEAL
             if (on_boundary(cell, f, dirichlet_ids))
               {
                 const auto id = cell->face(f)->boundary_id();
-                const auto k  = std::find(dirichlet_ids.begin(),
-                                         dirichlet_ids.end(),
-                                         id) -
-                               dirichlet_ids.begin();
+                const auto k =
+                  std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) -
+                  dirichlet_ids.begin();
                 local_faces[k].push_back(face_box<dim>(cell, f));
               }
       std::vector<decltype(pack_rtree(std::vector<BoundingBox<dim>>()))> trees;
       for (unsigned int k = 0; k < dirichlet_ids.size(); ++k)
         {
           std::vector<BoundingBox<dim>> faces;
-          for (const auto &part : Utilities::MPI::all_gather(comm, local_faces[k]))
+          for (const auto &part :
+               Utilities::MPI::all_gather(comm, local_faces[k]))
             faces.insert(faces.end(), part.begin(), part.end());
           trees.push_back(pack_rtree(faces));
         }
@@ -420,10 +421,10 @@ namespace PeriDEAL
         AssertThrow(
           Utilities::MPI::sum(nodes_of_id[k], comm) > 0,
           ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
-                          std::to_string(layer_thickness),
+                          layer_thickness_text,
                           "the Dirichlet layer of boundary id " +
                             std::to_string(dirichlet_ids[k]) + " (" +
-                            std::to_string(thickness) +
+                            format_number(thickness) +
                             " thick) holds no node centre, so it prescribes "
                             "nothing; use a layer of at least half a cell (a "
                             "thickness above h / (2 horizon))"));
@@ -436,9 +437,9 @@ namespace PeriDEAL
       AssertThrow(
         n_free > 0,
         ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
-                        std::to_string(layer_thickness),
+                        layer_thickness_text,
                         "every node lies in the Dirichlet layer (" +
-                          std::to_string(thickness) +
+                          format_number(thickness) +
                           " thick); use a thinner layer, a smaller horizon or "
                           "a larger body"));
     }

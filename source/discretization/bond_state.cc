@@ -14,8 +14,8 @@ namespace PeriDEAL
     BondState<dim>::reinit(const NodeSet<dim>      &node_set,
                            const NeighborList<dim> &neighbor_lists)
     {
-      nodes = &node_set;
-      lists = &neighbor_lists;
+      nodes                = &node_set;
+      lists                = &neighbor_lists;
       const unsigned int n = node_set.size();
       first.assign(n + 1, 0);
       for (unsigned int i = 0; i < n; ++i)
@@ -103,13 +103,13 @@ namespace PeriDEAL
         }
       const auto  list = lists->bonds(i);
       const auto  key  = (*nodes)[j].dofs[0];
-      const auto *it   = std::lower_bound(list.begin(),
-                                        list.end(),
-                                        key,
-                                        [&](const Bond &b, const auto value) {
-                                          return (*nodes)[b.neighbor].dofs[0] <
-                                                 value;
-                                        });
+      const auto *it =
+        std::lower_bound(list.begin(),
+                         list.end(),
+                         key,
+                         [&](const Bond &b, const auto value) {
+                           return (*nodes)[b.neighbor].dofs[0] < value;
+                         });
       if (it == list.end() || it->neighbor != j)
         return -1;
       return it - list.begin();

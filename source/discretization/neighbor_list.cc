@@ -92,7 +92,7 @@ namespace PeriDEAL
 
       std::vector<std::vector<Bond>> lists(n);
       auto                           build = [&](const unsigned int i) {
-        const Point<dim>          &x = nodes[i].location;
+        const Point<dim> &x = nodes[i].location;
         if (uniform)
           {
             // On the lattice the neighbours are the stencil's offsets that
@@ -111,8 +111,8 @@ namespace PeriDEAL
                 lists[i].push_back(
                   {static_cast<unsigned int>(j), o.beta * nodes[j].volume()});
               }
-            full[i]       = (n_here == full_stencil.size());
-            stored[i]     = store_full_lists || !full[i];
+            full[i] = (n_here == full_stencil.size());
+            stored[i] = store_full_lists || !full[i];
             n_bonds_of[i] = n_here;
             if (!stored[i])
               {
@@ -156,8 +156,8 @@ namespace PeriDEAL
                            nodes[q.neighbor].dofs[0];
                   });
         n_bonds_of[i] = lists[i].size();
-        full[i]       = uniform && lists[i].size() == full_stencil.size();
-        stored[i]     = store_full_lists || !full[i];
+        full[i] = uniform && lists[i].size() == full_stencil.size();
+        stored[i] = store_full_lists || !full[i];
       };
       // A node without a stored list keeps nothing but its flags.
       auto release = [&](const unsigned int i) {

@@ -56,10 +56,10 @@ namespace PeriDEAL
           unsigned int corner = 0;
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const double x     = cell.vertex(v)[d];
-              const bool   lower = std::abs(x - box.lower_bound(d)) <= tolerance;
-              const bool   upper = std::abs(x - box.upper_bound(d)) <= tolerance;
-              is_box             = is_box && (lower || upper) && !(lower && upper);
+              const double x   = cell.vertex(v)[d];
+              const bool lower = std::abs(x - box.lower_bound(d)) <= tolerance;
+              const bool upper = std::abs(x - box.upper_bound(d)) <= tolerance;
+              is_box = is_box && (lower || upper) && !(lower && upper);
               corner |= (upper ? 1u : 0u) << d;
             }
           is_box              = is_box && !corner_seen[corner];

@@ -2,8 +2,8 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include <perideal/base/exceptions.h>
 #include <perideal/base/collective_checks.h>
+#include <perideal/base/exceptions.h>
 #include <perideal/io/solution_output.h>
 
 #include <filesystem>
@@ -81,7 +81,8 @@ namespace PeriDEAL
             if (code || !std::filesystem::is_directory(output_directory))
               error = "Invalid value '" + output_directory +
                       "' for the parameter 'Output/Directory': it cannot be "
-                      "created (" + code.message() + ").";
+                      "created (" +
+                      code.message() + ").";
           }
         throw_on_any_rank(error, comm);
       }

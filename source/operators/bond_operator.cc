@@ -31,14 +31,14 @@ namespace PeriDEAL
                               const Discretization::NeighborList<dim> &lists_,
                               const Models::Model<dim>                &model_,
                               const double                             horizon_,
-                              const Discretization::BondState<dim> *state_)
+                              const Discretization::BondState<dim>    *state_)
     {
-      nodes       = &nodes_;
-      lists       = &lists_;
-      model       = &model_;
-      horizon     = horizon_;
-      bond_state  = state_;
-      state_based = model->is_state_based();
+      nodes                = &nodes_;
+      lists                = &lists_;
+      model                = &model_;
+      horizon              = horizon_;
+      bond_state           = state_;
+      state_based          = model->is_state_based();
       const unsigned int n = nodes->size();
 
       // The vector layout: owned DoFs, then every other node of the set as
@@ -54,7 +54,9 @@ namespace PeriDEAL
         owned.add_indices(dofs.begin(), dofs.end());
         owned.compress();
         partitioner = std::make_shared<Utilities::MPI::Partitioner>(
-          owned, nodes->relevant_dofs(), nodes->get_communicator());
+          owned,
+          nodes->relevant_dofs(),
+          nodes->get_communicator());
       }
       vector_index.resize(n);
       for (unsigned int i = 0; i < n; ++i)
@@ -71,9 +73,8 @@ namespace PeriDEAL
       // Slots: the lattice box on a uniform grid, unless it is much larger
       // than the node set (a scattered partition); node indices otherwise.
       const auto &lattice = lists->lattice();
-      use_lattice =
-        lattice.is_uniform() && !lists->stencil().empty() &&
-        lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
+      use_lattice         = lattice.is_uniform() && !lists->stencil().empty() &&
+                    lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
       slot.resize(n);
       n_slots = use_lattice ? lattice.n_slots() : n;
       for (unsigned int i = 0; i < n; ++i)
@@ -313,10 +314,11 @@ namespace PeriDEAL
                   // The stencil's constants hold for every node of the
                   // lattice; only the dilatation factor d / m_i differs.
                   list_theta_scale[i] = m[i] > 0 ? m0 / m[i] : 0.;
-                  for_each_intact_bond(i, [&](const unsigned int j,
-                                              const double) {
-                    list_stencil_index.push_back(stencil_index(i, j));
-                  });
+                  for_each_intact_bond(i,
+                                       [&](const unsigned int j, const double) {
+                                         list_stencil_index.push_back(
+                                           stencil_index(i, j));
+                                       });
                   const std::size_t n_bonds =
                     list_stencil_index.size() - list_first[i];
                   bond_visits += (needs_theta[i] ? n_bonds : 0) +
@@ -324,24 +326,25 @@ namespace PeriDEAL
                   list_first[i + 1] = list_stencil_index.size();
                   continue;
                 }
-              for_each_intact_bond(i, [&](const unsigned int j,
-                                          const double       w) {
-                const Tensor<1, dim> xi = (*nodes)[j].location - x;
-                const double         r  = xi.norm();
-                ListBond             bond;
-                bond.neighbor_slot = slot[j];
-                for (unsigned int d = 0; d < dim; ++d)
-                  bond.n[d] = xi[d] / r;
-                bond.g = state_based ?
-                           dim / m[i] * model->influence(r, horizon) * r * w :
-                           0.;
-                bond.a = volume * w * model->dilatation_constant(r, horizon);
-                bond.b = volume * w * model->extension_constant(r, horizon);
-                list_bonds.push_back(bond);
-              });
+              for_each_intact_bond(
+                i,
+                [&](const unsigned int j, const double w) {
+                  const Tensor<1, dim> xi = (*nodes)[j].location - x;
+                  const double         r  = xi.norm();
+                  ListBond             bond;
+                  bond.neighbor_slot = slot[j];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    bond.n[d] = xi[d] / r;
+                  bond.g = state_based ?
+                             dim / m[i] * model->influence(r, horizon) * r * w :
+                             0.;
+                  bond.a = volume * w * model->dilatation_constant(r, horizon);
+                  bond.b = volume * w * model->extension_constant(r, horizon);
+                  list_bonds.push_back(bond);
+                });
               const std::size_t n_bonds = list_bonds.size() - list_first[i];
-              bond_visits += (needs_theta[i] ? n_bonds : 0) +
-                             (needs_force[i] ? n_bonds : 0);
+              bond_visits +=
+                (needs_theta[i] ? n_bonds : 0) + (needs_force[i] ? n_bonds : 0);
             }
           else if (needs_force[i] && on_stencil(i))
             ++n_owned_stencil;
@@ -425,8 +428,8 @@ namespace PeriDEAL
         [&](const std::size_t begin, const std::size_t end) {
           for (std::size_t q = begin; q < end; ++q)
             {
-              const unsigned int i  = theta_list_nodes[q];
-              const std::size_t  si = slot[i];
+              const unsigned int i     = theta_list_nodes[q];
+              const std::size_t  si    = slot[i];
               double             theta = 0;
               if (use_lattice)
                 {
@@ -537,8 +540,8 @@ namespace PeriDEAL
         [&](const std::size_t begin, const std::size_t end) {
           for (std::size_t q = begin; q < end; ++q)
             {
-              const unsigned int i  = force_list_nodes[q];
-              const std::size_t  si = slot[i];
+              const unsigned int i      = force_list_nodes[q];
+              const std::size_t  si     = slot[i];
               double             f[dim] = {};
               if (use_lattice)
                 for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
@@ -548,24 +551,25 @@ namespace PeriDEAL
                     double             e  = 0;
                     for (unsigned int d = 0; d < dim; ++d)
                       e += stencil.n[d][k] * (u_slot[d][sj] - u_slot[d][si]);
-                    const double t = stencil.a[k] * (t_slot[si] + t_slot[sj]) +
-                                     stencil.b[k] * (s_slot[si] + s_slot[sj]) * e;
+                    const double t =
+                      stencil.a[k] * (t_slot[si] + t_slot[sj]) +
+                      stencil.b[k] * (s_slot[si] + s_slot[sj]) * e;
                     for (unsigned int d = 0; d < dim; ++d)
                       f[d] += t * stencil.n[d][k];
                   }
               else
-              for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
-                {
-                  const ListBond   &bond = list_bonds[b];
-                  const std::size_t sj   = bond.neighbor_slot;
-                  double            e    = 0;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
-                  const double t = bond.a * (t_slot[si] + t_slot[sj]) +
-                                   bond.b * (s_slot[si] + s_slot[sj]) * e;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    f[d] += t * bond.n[d];
-                }
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const ListBond   &bond = list_bonds[b];
+                    const std::size_t sj   = bond.neighbor_slot;
+                    double            e    = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                    const double t = bond.a * (t_slot[si] + t_slot[sj]) +
+                                     bond.b * (s_slot[si] + s_slot[sj]) * e;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      f[d] += t * bond.n[d];
+                  }
               for (unsigned int d = 0; d < dim; ++d)
                 f_slot[d][si] = f[d];
             }
@@ -623,7 +627,7 @@ namespace PeriDEAL
         {
           // On the lattice every bond's constants are the stencil's:
           // g_ij = g_k m_0 / m_i, and g_ji = g_k m_0 / m_j (w_ji = w_ij).
-          const double m0 = stencil_weighted_volume;
+          const double m0      = stencil_weighted_volume;
           const auto  &lattice = lists->lattice();
           parallel::apply_to_subranges(
             0u,
@@ -674,9 +678,9 @@ namespace PeriDEAL
           const double      s_i    = s_slot[slot[i]];
           Tensor<1, dim>    G, a_sum, diag;
           for_each_intact_bond(i, [&](const unsigned int j, const double w) {
-            const Tensor<1, dim> xi = (*nodes)[j].location - x;
-            const double         r  = xi.norm();
-            const Tensor<1, dim> n  = xi / r;
+            const Tensor<1, dim> xi    = (*nodes)[j].location - x;
+            const double         r     = xi.norm();
+            const Tensor<1, dim> n     = xi / r;
             const double         s_j   = s_slot[slot[j]];
             const double         alpha = model->dilatation_constant(r, horizon);
             const double         beta  = model->extension_constant(r, horizon);

@@ -39,7 +39,8 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    ConstrainedOperator<dim>::vmult(VectorType &dst, const VectorType &src) const
+    ConstrainedOperator<dim>::vmult(VectorType       &dst,
+                                    const VectorType &src) const
     {
       const unsigned int local = prescribed_entry.size();
       for (unsigned int k = 0; k < local; ++k)
@@ -69,8 +70,9 @@ namespace PeriDEAL
       // rhs = load - K g = load + F(g) on free DoFs.
       op->apply(prescribed, rhs);
       for (unsigned int k = 0; k < local; ++k)
-        rhs.local_element(k) =
-          prescribed_entry[k] ? 0. : load.local_element(k) + rhs.local_element(k);
+        rhs.local_element(k) = prescribed_entry[k] ?
+                                 0. :
+                                 load.local_element(k) + rhs.local_element(k);
       prescribed.zero_out_ghost_values();
     }
 

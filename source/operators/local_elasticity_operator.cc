@@ -21,7 +21,8 @@ namespace PeriDEAL
       constexpr unsigned int n_vertices = 1u << dim;
       FullMatrix<double>     k(n_vertices * dim, n_vertices * dim);
       // 2-point Gauss rule per direction: exact for the Q1 stiffness.
-      const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)};
+      const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.),
+                               0.5 + 0.5 / std::sqrt(3.)};
       const double weight   = std::pow(h, dim) / n_vertices;
       for (unsigned int q = 0; q < n_vertices; ++q)
         {
@@ -53,9 +54,9 @@ namespace PeriDEAL
                 for (unsigned int p = 0; p < dim; ++p)
                   for (unsigned int r = 0; r < dim; ++r)
                     k(a * dim + p, b * dim + r) +=
-                      weight * (lambda * grad[a][p] * grad[b][r] +
-                                mu * (grad[a][r] * grad[b][p] +
-                                      (p == r ? dot : 0.)));
+                      weight *
+                      (lambda * grad[a][p] * grad[b][r] +
+                       mu * (grad[a][r] * grad[b][p] + (p == r ? dot : 0.)));
               }
         }
       return k;
@@ -78,7 +79,7 @@ namespace PeriDEAL
       constexpr unsigned int n_vertices = 1u << dim;
       const double           h          = lattice.spacing();
       const double           mu         = model.shear_modulus();
-      double lambda = model.bulk_modulus() - 2. / 3. * mu;
+      double                 lambda     = model.bulk_modulus() - 2. / 3. * mu;
       if (dim == 2 && model.plane_stress())
         lambda = 2 * lambda * mu / (lambda + 2 * mu);
       const FullMatrix<double> k = element_matrix(h, lambda, mu);
@@ -93,8 +94,8 @@ namespace PeriDEAL
       // lower corner x_i - a. Calls f(a, corner nodes) for each complete
       // cube.
       auto for_each_cube = [&](const unsigned int i, const auto &f) {
-        const auto                      &x = lattice.coordinates(i);
-        std::array<int, n_vertices>      corner;
+        const auto                 &x = lattice.coordinates(i);
+        std::array<int, n_vertices> corner;
         for (unsigned int a = 0; a < n_vertices; ++a)
           {
             bool complete = true;

@@ -37,25 +37,25 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::check_input(const Simulator<dim> &simulator) const
     {
-      AssertThrow(simulator.get_node_data_file().empty() ||
-                    simulator.get_analytical_solution() != nullptr,
-                  ExcInvalidInput(
-                    "Output/Node data file",
-                    simulator.get_node_data_file(),
-                    "the node data file holds the errors against the "
-                    "analytical solution: set 'Analytical solution/Compare "
-                    "with analytical solution = true', or leave the entry "
-                    "empty"));
+      AssertThrow(
+        simulator.get_node_data_file().empty() ||
+          simulator.get_analytical_solution() != nullptr,
+        ExcInvalidInput("Output/Node data file",
+                        simulator.get_node_data_file(),
+                        "the node data file holds the errors against the "
+                        "analytical solution: set 'Analytical solution/Compare "
+                        "with analytical solution = true', or leave the entry "
+                        "empty"));
       const auto &name = simulator.get_boundary_treatment_name();
-      AssertThrow(!simulator.get_boundary_treatment().uses_fictitious_layer() ||
-                    !simulator.get_linear_solver().is_matrix_free(),
-                  ExcInvalidInput(
-                    "Linear solver/Operator",
-                    "matrix-free",
-                    "the boundary treatment '" + name +
-                      "' is available with 'Operator = assembled' only so "
-                      "far; set it, or use 'Boundary treatment/Treatment = "
-                      "none'"));
+      AssertThrow(
+        !simulator.get_boundary_treatment().uses_fictitious_layer() ||
+          !simulator.get_linear_solver().is_matrix_free(),
+        ExcInvalidInput("Linear solver/Operator",
+                        "matrix-free",
+                        "the boundary treatment '" + name +
+                          "' is available with 'Operator = assembled' only so "
+                          "far; set it, or use 'Boundary treatment/Treatment = "
+                          "none'"));
     }
 
 
@@ -73,8 +73,8 @@ namespace PeriDEAL
           // shared stencil: their lists need not be stored.
           simulator.setup_neighbor_lists(!matrix_free);
           TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
-          const auto &nodes = simulator.get_nodes();
-          const auto &lists = simulator.get_neighbor_lists();
+          const auto        &nodes = simulator.get_nodes();
+          const auto        &lists = simulator.get_neighbor_lists();
           if (matrix_free)
             {
               bond_state.reinit(nodes, lists);
@@ -111,7 +111,8 @@ namespace PeriDEAL
                               treatment.uses_surface_nodes(),
                               treatment.taylor_order());
       }
-      summary.n_bonds = summary.n_nodes * layer_operator.n_neighbours_per_node();
+      summary.n_bonds =
+        summary.n_nodes * layer_operator.n_neighbours_per_node();
       summary.n_surface_nodes    = layer_operator.n_surface_nodes();
       summary.n_fictitious_nodes = layer_operator.n_fictitious_nodes();
       std::ostringstream line;
@@ -142,9 +143,9 @@ namespace PeriDEAL
       [[maybe_unused]] const auto &nodes = simulator.get_nodes();
       [[maybe_unused]] const auto &neighbor_lists =
         simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const auto  &model   = simulator.get_model();
       [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto &boundary_conditions =
+      [[maybe_unused]] const auto  &boundary_conditions =
         simulator.get_boundary_conditions();
       [[maybe_unused]] const auto &treatment =
         simulator.get_boundary_treatment();
@@ -183,8 +184,9 @@ namespace PeriDEAL
                 const bool dirichlet =
                   boundary_conditions.is_dirichlet_boundary(node.boundary_id);
                 const Tensor<1, dim> g =
-                  dirichlet ? boundary_conditions.dirichlet_value(node.location) :
-                              Tensor<1, dim>();
+                  dirichlet ?
+                    boundary_conditions.dirichlet_value(node.location) :
+                    Tensor<1, dim>();
                 const Tensor<1, dim> p =
                   boundary_conditions.is_traction_boundary(node.boundary_id) ?
                     boundary_conditions.traction_value(node.location,
@@ -196,8 +198,9 @@ namespace PeriDEAL
                   else
                     system_rhs[node.first_unknown + c] = node.area * p[c];
               }
-            summary.n_constrained_nodes = Utilities::MPI::sum(
-              static_cast<unsigned int>(prescribed.size()), communicator);
+            summary.n_constrained_nodes =
+              Utilities::MPI::sum(static_cast<unsigned int>(prescribed.size()),
+                                  communicator);
           }
         else
           {
@@ -249,9 +252,8 @@ namespace PeriDEAL
       summary.n_unknowns = owned.size();
       summary.n_nonzeros = system_matrix.n_nonzero_elements();
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed()
-            << " s] assembled: " << summary.n_unknowns << " unknowns, "
-            << summary.n_nonzeros << " nonzeros, "
+            << simulator.elapsed() << " s] assembled: " << summary.n_unknowns
+            << " unknowns, " << summary.n_nonzeros << " nonzeros, "
             << summary.n_constrained_nodes
             << (treatment.uses_surface_nodes() ?
                   " prescribed surface-node components" :
@@ -263,7 +265,8 @@ namespace PeriDEAL
         TimerOutput::Scope scope(timer, "solve");
         // Rigid translations for AMG: the component of each unknown.
         std::vector<std::vector<bool>> constant_modes(
-          dim, std::vector<bool>(owned.n_elements(), false));
+          dim,
+          std::vector<bool>(owned.n_elements(), false));
         for (unsigned int i = 0; i < nodes.n_owned(); ++i)
           for (unsigned int c = 0; c < dim; ++c)
             constant_modes[c][owned.index_within_set(
@@ -272,8 +275,11 @@ namespace PeriDEAL
           for (unsigned int c = 0; c < dim; ++c)
             constant_modes[c][owned.index_within_set(node.first_unknown + c)] =
               true;
-        summary.solver = linear_solver.solve(
-          system_matrix, solution, system_rhs, constant_modes, false);
+        summary.solver = linear_solver.solve(system_matrix,
+                                             solution,
+                                             system_rhs,
+                                             constant_modes,
+                                             false);
       }
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
             << simulator.elapsed() << " s] solved with "
@@ -330,9 +336,9 @@ namespace PeriDEAL
       [[maybe_unused]] const auto &nodes = simulator.get_nodes();
       [[maybe_unused]] const auto &neighbor_lists =
         simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const auto  &model   = simulator.get_model();
       [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto &boundary_conditions =
+      [[maybe_unused]] const auto  &boundary_conditions =
         simulator.get_boundary_conditions();
       [[maybe_unused]] const auto &treatment =
         simulator.get_boundary_treatment();
@@ -345,7 +351,7 @@ namespace PeriDEAL
       [[maybe_unused]] const auto &output = simulator.get_output();
       [[maybe_unused]] const auto &node_data_file =
         simulator.get_node_data_file();
-      using VectorType = LinearAlgebra::distributed::Vector<double>;
+      using VectorType      = LinearAlgebra::distributed::Vector<double>;
       summary.n_unknowns    = dof_handler.n_dofs();
       const IndexSet &owned = dof_handler.locally_owned_dofs();
       VectorType      load_vector, rhs, prescribed, solution;
@@ -376,8 +382,8 @@ namespace PeriDEAL
                             communicator);
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
             << simulator.elapsed()
-            << " s] matrix-free operator: " << dof_handler.n_dofs()
-            << " DoFs, " << n_stencil << " nodes on the shared stencil, "
+            << " s] matrix-free operator: " << dof_handler.n_dofs() << " DoFs, "
+            << n_stencil << " nodes on the shared stencil, "
             << summary.n_nodes - n_stencil << " on lists, "
             << summary.n_constrained_nodes << " nodes in Dirichlet layers; "
             << visits << " bond visits per application, "
@@ -390,7 +396,11 @@ namespace PeriDEAL
         {
           TimerOutput::Scope scope(timer, "preconditioner setup");
           Operators::LocalElasticityOperator<dim>::assemble(
-            nodes, neighbor_lists.lattice(), model, constraints, local_matrix);
+            nodes,
+            neighbor_lists.lattice(),
+            model,
+            constraints,
+            local_matrix);
           DoFTools::extract_constant_modes(dof_handler,
                                            ComponentMask(dim, true),
                                            constant_modes);
@@ -422,9 +432,9 @@ namespace PeriDEAL
         {
           internal2 += std::pow(internal.local_element(k), 2);
           if (!constrained_operator.is_prescribed(k))
-            free_residual2 += std::pow(internal.local_element(k) +
-                                         load_vector.local_element(k),
-                                       2);
+            free_residual2 +=
+              std::pow(internal.local_element(k) + load_vector.local_element(k),
+                       2);
         }
       free_residual2 = Utilities::MPI::sum(free_residual2, communicator);
       internal2      = Utilities::MPI::sum(internal2, communicator);
@@ -459,9 +469,9 @@ namespace PeriDEAL
       [[maybe_unused]] const auto &nodes = simulator.get_nodes();
       [[maybe_unused]] const auto &neighbor_lists =
         simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const auto  &model   = simulator.get_model();
       [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto &boundary_conditions =
+      [[maybe_unused]] const auto  &boundary_conditions =
         simulator.get_boundary_conditions();
       [[maybe_unused]] const auto &treatment =
         simulator.get_boundary_treatment();
@@ -484,7 +494,7 @@ namespace PeriDEAL
           solve_matrix_free(simulator);
           return;
         }
-      summary.n_unknowns = dof_handler.n_dofs();
+      summary.n_unknowns       = dof_handler.n_dofs();
       const IndexSet &owned    = dof_handler.locally_owned_dofs();
       const IndexSet  relevant = nodes.relevant_dofs();
       {
@@ -504,9 +514,8 @@ namespace PeriDEAL
         communicator);
       summary.n_nonzeros = system_matrix.n_nonzero_elements();
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed()
-            << " s] assembled: " << dof_handler.n_dofs() << " DoFs, "
-            << summary.n_nonzeros << " nonzeros, "
+            << simulator.elapsed() << " s] assembled: " << dof_handler.n_dofs()
+            << " DoFs, " << summary.n_nonzeros << " nonzeros, "
             << summary.n_constrained_nodes << " nodes in Dirichlet layers"
             << std::endl;
 
@@ -584,9 +593,9 @@ namespace PeriDEAL
       [[maybe_unused]] const auto &nodes = simulator.get_nodes();
       [[maybe_unused]] const auto &neighbor_lists =
         simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const auto  &model   = simulator.get_model();
       [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto &boundary_conditions =
+      [[maybe_unused]] const auto  &boundary_conditions =
         simulator.get_boundary_conditions();
       [[maybe_unused]] const auto &treatment =
         simulator.get_boundary_treatment();
@@ -631,9 +640,9 @@ namespace PeriDEAL
             }
           else
             pd_operator.compute_dilatation(displacement, dilatation);
-          const auto &weighted_volumes = matrix_free ?
-                                           bond_operator.weighted_volumes() :
-                                           pd_operator.weighted_volumes();
+          const auto   &weighted_volumes = matrix_free ?
+                                             bond_operator.weighted_volumes() :
+                                             pd_operator.weighted_volumes();
           IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
             neighbours{"n_neighbors", {}};
           for (unsigned int i = 0; i < n_owned; ++i)
@@ -670,8 +679,7 @@ namespace PeriDEAL
               double e = 0, u = 0, n2 = 0;
               for (unsigned int c = 0; c < dim; ++c)
                 {
-                  const double diff =
-                    displacement[nodes[i].dofs[c]] - exact[c];
+                  const double diff = displacement[nodes[i].dofs[c]] - exact[c];
                   e += diff * diff;
                   u += exact[c] * exact[c];
                   if (component_max[c] > 0)
@@ -679,8 +687,8 @@ namespace PeriDEAL
                 }
               e2 += nodes[i].volume() * e;
               u2 += nodes[i].volume() * u;
-              e_max = std::max(e_max, std::sqrt(e));
-              u_max = std::max(u_max, std::sqrt(u));
+              e_max          = std::max(e_max, std::sqrt(e));
+              u_max          = std::max(u_max, std::sqrt(u));
               normalized_max = std::max(normalized_max, std::sqrt(n2));
               error.values.push_back(std::sqrt(e));
               normalized.values.push_back(std::sqrt(n2));
@@ -693,8 +701,8 @@ namespace PeriDEAL
           // Surface nodes: the same measure at the face centres.
           if (layer && treatment.uses_surface_nodes())
             {
-              double surface_max = 0;
-              const auto &surface = layer_operator.owned_surface_nodes();
+              double      surface_max = 0;
+              const auto &surface     = layer_operator.owned_surface_nodes();
               for (unsigned int k = 0; k < surface.size(); ++k)
                 {
                   analytical_solution->vector_value(surface[k].location, exact);
@@ -722,9 +730,8 @@ namespace PeriDEAL
           pcout << "           error against the analytical solution: "
                 << "relative L2 " << std::scientific << std::setprecision(3)
                 << summary.errors.l2 << ", relative max " << summary.errors.max
-                << ", normalized max (Eq. 38) "
-                << summary.errors.max_normalized << std::defaultfloat
-                << std::endl;
+                << ", normalized max (Eq. 38) " << summary.errors.max_normalized
+                << std::defaultfloat << std::endl;
         }
 
       TimerOutput::Scope scope(timer, "output");
@@ -739,9 +746,8 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    QuasiStatic<dim>::write_node_data(
-      Simulator<dim>       &simulator,
-      const Tensor<1, dim> &component_max) const
+    QuasiStatic<dim>::write_node_data(Simulator<dim>       &simulator,
+                                      const Tensor<1, dim> &component_max) const
     {
       [[maybe_unused]] const MPI_Comm communicator =
         simulator.get_communicator();
@@ -754,9 +760,9 @@ namespace PeriDEAL
       [[maybe_unused]] const auto &nodes = simulator.get_nodes();
       [[maybe_unused]] const auto &neighbor_lists =
         simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto &model = simulator.get_model();
+      [[maybe_unused]] const auto  &model   = simulator.get_model();
       [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto &boundary_conditions =
+      [[maybe_unused]] const auto  &boundary_conditions =
         simulator.get_boundary_conditions();
       [[maybe_unused]] const auto &treatment =
         simulator.get_boundary_treatment();
@@ -772,23 +778,23 @@ namespace PeriDEAL
       // Rows: kind (0 body, 1 surface), x, u, exact, normalized error.
       std::vector<double> rows;
       Vector<double>      exact(dim);
-      const auto add = [&](const int kind, const Point<dim> &x,
-                           const Tensor<1, dim> &u) {
-        analytical_solution->vector_value(x, exact);
-        rows.push_back(kind);
-        double n2 = 0;
-        for (unsigned int c = 0; c < dim; ++c)
-          rows.push_back(x[c]);
-        for (unsigned int c = 0; c < dim; ++c)
-          rows.push_back(u[c]);
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            rows.push_back(exact[c]);
-            if (component_max[c] > 0)
-              n2 += std::pow((u[c] - exact[c]) / component_max[c], 2);
-          }
-        rows.push_back(std::sqrt(n2));
-      };
+      const auto          add =
+        [&](const int kind, const Point<dim> &x, const Tensor<1, dim> &u) {
+          analytical_solution->vector_value(x, exact);
+          rows.push_back(kind);
+          double n2 = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            rows.push_back(x[c]);
+          for (unsigned int c = 0; c < dim; ++c)
+            rows.push_back(u[c]);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              rows.push_back(exact[c]);
+              if (component_max[c] > 0)
+                n2 += std::pow((u[c] - exact[c]) / component_max[c], 2);
+            }
+          rows.push_back(std::sqrt(n2));
+        };
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
           Tensor<1, dim> u;
@@ -862,7 +868,7 @@ namespace PeriDEAL
             lower[d] = std::min(lower[d], nodes[i].location[d]);
             upper[d] = std::max(upper[d], nodes[i].location[d]);
           }
-      double size = 0;
+      double     size = 0;
       Point<dim> centre;
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -871,7 +877,8 @@ namespace PeriDEAL
           centre[d] = 0.5 * (lower[d] + upper[d]);
           size      = std::max(size, upper[d] - lower[d]);
         }
-      auto mode = [&](const unsigned int r, const Point<dim> &p,
+      auto mode = [&](const unsigned int r,
+                      const Point<dim>  &p,
                       const unsigned int c) -> double {
         if (r < dim)
           return r == c ? 1. : 0.;
@@ -891,8 +898,8 @@ namespace PeriDEAL
           if (constraints.is_constrained(nodes[i].dofs[c]))
             for (unsigned int p = 0; p < n_modes; ++p)
               for (unsigned int q = 0; q < n_modes; ++q)
-                gram[p * n_modes + q] += mode(p, nodes[i].location, c) *
-                                         mode(q, nodes[i].location, c);
+                gram[p * n_modes + q] +=
+                  mode(p, nodes[i].location, c) * mode(q, nodes[i].location, c);
       Utilities::MPI::sum(gram, comm, gram);
       LAPACKFullMatrix<double> matrix(n_modes, n_modes);
       for (unsigned int p = 0; p < n_modes; ++p)
@@ -900,7 +907,10 @@ namespace PeriDEAL
           matrix(p, q) = gram[p * n_modes + q];
       Vector<double>     eigenvalues;
       FullMatrix<double> eigenvectors;
-      matrix.compute_eigenvalues_symmetric(-1., 1e300, 0., eigenvalues,
+      matrix.compute_eigenvalues_symmetric(-1.,
+                                           1e300,
+                                           0.,
+                                           eigenvalues,
                                            eigenvectors);
       const double largest = eigenvalues.linfty_norm();
       const char  *axes[]  = {"x", "y", "z"};
@@ -916,19 +926,18 @@ namespace PeriDEAL
             free_modes += std::string(free_modes.empty() ? "" : ", ") +
                           (dominant < dim ?
                              std::string("translation in ") + axes[dominant] :
-                             dim == 2 ?
-                             std::string("rotation in the x-y plane") :
-                             std::string("rotation about ") +
-                               axes[dominant - dim]);
+                           dim == 2 ? std::string("rotation in the x-y plane") :
+                                      std::string("rotation about ") +
+                                        axes[dominant - dim]);
           }
-      AssertThrow(free_modes.empty(),
-                  ExcInvalidInput(
-                    "Boundary conditions/Dirichlet boundary ids",
-                    simulator.get_boundary_conditions().dirichlet_ids_string(),
-                    "the Dirichlet layers leave a rigid motion free (" +
-                      free_modes +
-                      "), so the system is singular; prescribe the missing "
-                      "components ('Dirichlet components') or more boundaries"));
+      AssertThrow(
+        free_modes.empty(),
+        ExcInvalidInput(
+          "Boundary conditions/Dirichlet boundary ids",
+          simulator.get_boundary_conditions().dirichlet_ids_string(),
+          "the Dirichlet layers leave a rigid motion free (" + free_modes +
+            "), so the system is singular; prescribe the missing "
+            "components ('Dirichlet components') or more boundaries"));
     }
 
 

@@ -57,8 +57,7 @@ namespace PeriDEAL
 
 
     template <int dim>
-    Simulator<dim>::Simulator(
-      const MPI_Comm communicator)
+    Simulator<dim>::Simulator(const MPI_Comm communicator)
       : communicator(communicator)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
       , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
@@ -433,12 +432,11 @@ namespace PeriDEAL
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
             << wall_clock.wall_time()
             << " s] mesh: " << triangulation.n_global_active_cells()
-            << " cells, h = " << std::defaultfloat << h
+            << " cells, h = " << std::defaultfloat << std::setprecision(10) << h
             << ", horizon = " << horizon << " (m-ratio " << m_ratio << "), "
             << Utilities::MPI::n_mpi_processes(communicator)
             << " MPI process(es)" << std::endl;
     }
-
 
 
     template <int dim>
@@ -454,9 +452,8 @@ namespace PeriDEAL
       diameter = Utilities::MPI::max(diameter, communicator);
       // State-based forces of an owned node need the dilatations of its
       // neighbours, hence their neighbours: two horizons.
-      const double coupling_range = model->is_state_based() ?
-                                      2 * (horizon + diameter) :
-                                      horizon + diameter;
+      const double coupling_range =
+        model->is_state_based() ? 2 * (horizon + diameter) : horizon + diameter;
       nodes.reinit(dof_handler, coupling_range);
       summary.n_nodes = triangulation.n_global_active_cells();
     }
@@ -585,7 +582,7 @@ namespace PeriDEAL
       if (!summary_file.empty() &&
           Utilities::MPI::this_mpi_process(communicator) == 0)
         {
-          const bool    is_new = !std::filesystem::exists(summary_file);
+          const bool is_new = !std::filesystem::exists(summary_file);
           const std::filesystem::path parent =
             std::filesystem::path(summary_file).parent_path();
           if (!parent.empty())
@@ -627,12 +624,15 @@ namespace PeriDEAL
               << summary.treatment << "\"," << summary.taylor_order << ','
               << summary.n_unknowns << ',' << summary.n_surface_nodes << ','
               << summary.n_fictitious_nodes << ','
-              << (summary.has_errors ? to_string(summary.errors.max_normalized) :
-                                       "")
-              << ",\"" << (linear_solver.is_matrix_free() ? "matrix-free" : "assembled")
+              << (summary.has_errors ?
+                    to_string(summary.errors.max_normalized) :
+                    "")
+              << ",\""
+              << (linear_solver.is_matrix_free() ? "matrix-free" : "assembled")
               << "\",\"" << linear_solver.preconditioner_name() << "\","
-              << t("preconditioner setup") << ',' << MultithreadInfo::n_threads()
-              << ",\"" << problem_name << "\"\n";
+              << t("preconditioner setup") << ','
+              << MultithreadInfo::n_threads() << ",\"" << problem_name
+              << "\"\n";
         }
     }
 

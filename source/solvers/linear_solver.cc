@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 namespace PeriDEAL
 {
@@ -96,15 +97,15 @@ namespace PeriDEAL
     void
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
-      method_name     = prm.get("Method");
-      direct_package  = prm.get("Direct solver package");
-      preconditioner  = prm.get("Preconditioner");
-      ilu_fill        = prm.get_integer("ILU fill level");
-      tolerance       = prm.get_double("Relative tolerance");
-      max_iterations  = prm.get_integer("Maximum iterations");
-      restart_length  = prm.get_integer("GMRES restart length");
-      smoother_sweeps = prm.get_integer("AMG smoother sweeps");
-      aggregation     = prm.get_double("AMG aggregation threshold");
+      method_name      = prm.get("Method");
+      direct_package   = prm.get("Direct solver package");
+      preconditioner   = prm.get("Preconditioner");
+      ilu_fill         = prm.get_integer("ILU fill level");
+      tolerance        = prm.get_double("Relative tolerance");
+      max_iterations   = prm.get_integer("Maximum iterations");
+      restart_length   = prm.get_integer("GMRES restart length");
+      smoother_sweeps  = prm.get_integer("AMG smoother sweeps");
+      aggregation      = prm.get_double("AMG aggregation threshold");
       matrix_free      = prm.get("Operator") == "matrix-free";
       chebyshev_degree = prm.get_integer("Chebyshev degree");
       if (matrix_free)
@@ -117,18 +118,16 @@ namespace PeriDEAL
                         "'Linear solver/Operator = matrix-free' builds none: "
                         "use 'Method = CG' (or GMRES), or 'Operator = "
                         "assembled'"));
-          AssertThrow(preconditioner == "Jacobi" ||
-                        preconditioner == "Chebyshev" ||
-                        preconditioner == "local elasticity" ||
-                        preconditioner == "none",
-                      ExcInvalidInput(
-                        "Linear solver/Preconditioner",
-                        preconditioner,
-                        "'" + preconditioner +
-                          "' needs the assembled PD matrix, and 'Linear "
-                          "solver/Operator = matrix-free' builds none: use "
-                          "'local elasticity', 'Chebyshev' or 'Jacobi', or "
-                          "'Operator = assembled'"));
+          AssertThrow(
+            preconditioner == "Jacobi" || preconditioner == "Chebyshev" ||
+              preconditioner == "local elasticity" || preconditioner == "none",
+            ExcInvalidInput("Linear solver/Preconditioner",
+                            preconditioner,
+                            "'" + preconditioner +
+                              "' needs the assembled PD matrix, and 'Linear "
+                              "solver/Operator = matrix-free' builds none: use "
+                              "'local elasticity', 'Chebyshev' or 'Jacobi', or "
+                              "'Operator = assembled'"));
         }
       else
         AssertThrow(preconditioner != "Chebyshev" &&
@@ -197,7 +196,28 @@ namespace PeriDEAL
             false,
             direct_package == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu");
           TrilinosWrappers::SolverDirect solver(control, data);
-          solver.solve(matrix, solution, rhs);
+          try
+            {
+              solver.solve(matrix, solution, rhs);
+            }
+          catch (const ExceptionBase &exc)
+            {
+              std::ostringstream original;
+              exc.print_info(original);
+              AssertThrow(
+                false,
+                ExcMessage(
+                  "The direct solver (" + report.method + ") failed on " +
+                  std::to_string(matrix.m()) + " unknowns with " +
+                  std::to_string(matrix.n_nonzero_elements()) +
+                  " nonzeros. Either the matrix is singular (a rigid motion "
+                  "that no Dirichlet condition fixes) or the factorisation "
+                  "ran out of memory (the factors of PD matrices are nearly "
+                  "dense). Check 'Boundary conditions/Dirichlet boundary "
+                  "ids', or use 'Linear solver/Operator = matrix-free' with "
+                  "'Method = CG'. Trilinos said: " +
+                  original.str()));
+            }
           report.iterations = 1;
         }
       else
@@ -250,24 +270,48 @@ namespace PeriDEAL
           SolverControl control(max_iterations, tolerance * rhs_norm);
           try
             {
-              if (method_name == "CG")
+              try
                 {
-                  TrilinosWrappers::SolverCG solver(control);
-                  solver.solve(matrix, solution, rhs, *precondition);
+                  if (method_name == "CG")
+                    {
+                      TrilinosWrappers::SolverCG solver(control);
+                      solver.solve(matrix, solution, rhs, *precondition);
+                    }
+                  else if (method_name == "GMRES")
+                    {
+                      TrilinosWrappers::SolverGMRES solver(
+                        control,
+                        TrilinosWrappers::SolverGMRES::AdditionalData(
+                          false,
+                          restart_length));
+                      solver.solve(matrix, solution, rhs, *precondition);
+                    }
+                  else
+                    {
+                      TrilinosWrappers::SolverBicgstab solver(control);
+                      solver.solve(matrix, solution, rhs, *precondition);
+                    }
                 }
-              else if (method_name == "GMRES")
+              catch (const SolverControl::NoConvergence &)
                 {
-                  TrilinosWrappers::SolverGMRES solver(
-                    control,
-                    TrilinosWrappers::SolverGMRES::AdditionalData(
-                      false,
-                      restart_length));
-                  solver.solve(matrix, solution, rhs, *precondition);
+                  throw;
                 }
-              else
+              catch (const ExceptionBase &exc)
                 {
-                  TrilinosWrappers::SolverBicgstab solver(control);
-                  solver.solve(matrix, solution, rhs, *precondition);
+                  // AztecOO reports breakdowns as error codes.
+                  std::ostringstream original;
+                  exc.print_info(original);
+                  AssertThrow(
+                    false,
+                    ExcMessage(
+                      "The Krylov solver (" + report.method +
+                      ") broke down. Common causes: a singular system (a rigid "
+                      "motion that no Dirichlet condition fixes), a "
+                      "preconditioner that does not suit the matrix (try "
+                      "'Linear solver/Preconditioner = AMG' or ILU, or 'Method = "
+                      "GMRES' for non-symmetric systems), or a 'Relative "
+                      "tolerance' below round-off. Trilinos said: " +
+                      original.str()));
                 }
             }
           catch (const SolverControl::NoConvergence &e)
@@ -278,9 +322,9 @@ namespace PeriDEAL
                             ") did not converge: after " +
                             std::to_string(e.last_step) +
                             " iterations the residual is " +
-                            std::to_string(e.last_residual / rhs_norm) +
+                            format_number(e.last_residual / rhs_norm) +
                             " of |b|, above the 'Relative tolerance' " +
-                            std::to_string(tolerance) +
+                            format_number(tolerance) +
                             ". Raise 'Maximum iterations', change the "
                             "preconditioner, or use 'Method = direct'."));
             }
@@ -300,7 +344,7 @@ namespace PeriDEAL
       AssertThrow(method_name != "direct" || report.relative_residual <= 1e-6,
                   ExcMessage("The direct solver (" + report.method +
                              ") returned a solution with relative residual " +
-                             std::to_string(report.relative_residual) +
+                             format_number(report.relative_residual) +
                              ": the system is singular or nearly so. Most "
                              "often a rigid motion is not fixed: list "
                              "'Boundary conditions/Dirichlet boundary ids' "

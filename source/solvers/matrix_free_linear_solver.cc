@@ -56,12 +56,12 @@ namespace PeriDEAL
 
     template <int dim>
     SolverReport
-    LinearSolver::solve(const Operators::ConstrainedOperator<dim> &op,
-                        VectorType                                &solution,
-                        const VectorType                          &rhs,
-                        const TrilinosWrappers::SparseMatrix *local_matrix,
-                        const std::vector<std::vector<bool>> &constant_modes)
-      const
+    LinearSolver::solve(
+      const Operators::ConstrainedOperator<dim> &op,
+      VectorType                                &solution,
+      const VectorType                          &rhs,
+      const TrilinosWrappers::SparseMatrix      *local_matrix,
+      const std::vector<std::vector<bool>>      &constant_modes) const
     {
       Timer        timer;
       SolverReport report;
@@ -105,8 +105,13 @@ namespace PeriDEAL
           if (preconditioner == "Jacobi")
             {
               DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
-              run_krylov(method_name, restart_length, control, op, solution,
-                         rhs, jacobi);
+              run_krylov(method_name,
+                         restart_length,
+                         control,
+                         op,
+                         solution,
+                         rhs,
+                         jacobi);
             }
           else if (preconditioner == "Chebyshev")
             {
@@ -115,15 +120,20 @@ namespace PeriDEAL
                                       VectorType,
                                       DiagonalMatrix<VectorType>>;
               typename Chebyshev::AdditionalData data;
-              data.degree          = chebyshev_degree;
-              data.smoothing_range = 0.; // precondition the whole spectrum
+              data.degree              = chebyshev_degree;
+              data.smoothing_range     = 0.; // precondition the whole spectrum
               data.eig_cg_n_iterations = 20;
               data.preconditioner =
                 std::make_shared<DiagonalMatrix<VectorType>>(inverse_diagonal);
               Chebyshev chebyshev;
               chebyshev.initialize(op, data);
-              run_krylov(method_name, restart_length, control, op, solution,
-                         rhs, chebyshev);
+              run_krylov(method_name,
+                         restart_length,
+                         control,
+                         op,
+                         solution,
+                         rhs,
+                         chebyshev);
             }
           else if (preconditioner == "local elasticity")
             {
@@ -135,12 +145,22 @@ namespace PeriDEAL
               data.aggregation_threshold = aggregation;
               TrilinosWrappers::PreconditionAMG amg;
               amg.initialize(*local_matrix, data);
-              run_krylov(method_name, restart_length, control, op, solution,
-                         rhs, amg);
+              run_krylov(method_name,
+                         restart_length,
+                         control,
+                         op,
+                         solution,
+                         rhs,
+                         amg);
             }
           else
-            run_krylov(method_name, restart_length, control, op, solution,
-                       rhs, PreconditionIdentity());
+            run_krylov(method_name,
+                       restart_length,
+                       control,
+                       op,
+                       solution,
+                       rhs,
+                       PreconditionIdentity());
         }
       catch (const SolverControl::NoConvergence &e)
         {

@@ -47,8 +47,10 @@ field(const Point<dim> &x)
 
 template <int dim>
 bool
-crosses_crack(const Point<dim> &a, const Point<dim> &b, const double x_c,
-              const double y_c)
+crosses_crack(const Point<dim> &a,
+              const Point<dim> &b,
+              const double      x_c,
+              const double      y_c)
 {
   if ((a[0] - x_c) * (b[0] - x_c) >= 0)
     return false;
@@ -58,8 +60,9 @@ crosses_crack(const Point<dim> &a, const Point<dim> &b, const double x_c,
 
 template <int dim>
 void
-check(const std::string &model_name, const unsigned int n_cells,
-      const double m_ratio)
+check(const std::string &model_name,
+      const unsigned int n_cells,
+      const double       m_ratio)
 {
   const MPI_Comm                            comm = MPI_COMM_WORLD;
   parallel::distributed::Triangulation<dim> tria(comm);
@@ -80,7 +83,7 @@ check(const std::string &model_name, const unsigned int n_cells,
   Discretization::NodeSet<dim> nodes;
   nodes.reinit(dof_handler, 2 * (horizon + std::sqrt(dim)));
   const PeriDEAL::Quadrature::ExactPartialVolume<dim> exact;
-  Discretization::NeighborList<dim>         lists;
+  Discretization::NeighborList<dim>                   lists;
   lists.reinit(nodes, horizon, exact, model->is_state_based(), false);
   Discretization::BondState<dim> state;
   state.reinit(nodes, lists);
@@ -95,7 +98,9 @@ check(const std::string &model_name, const unsigned int n_cells,
     if (nodes[i].location[0] < x_c)
       for (unsigned int k = 0; k < lists.n_bonds(i); ++k)
         if (crosses_crack(nodes[i].location,
-                          nodes[state.neighbor(i, k)].location, x_c, y_c))
+                          nodes[state.neighbor(i, k)].location,
+                          x_c,
+                          y_c))
           state.break_bond(i, k);
   const std::size_t n_pairs = state.synchronize();
   op.update_bond_state();
@@ -114,17 +119,17 @@ check(const std::string &model_name, const unsigned int n_cells,
 
   // Brute force over the whole mesh.
   std::vector<Discretization::Node<dim>> all;
-  for (const auto &part : Utilities::MPI::all_gather(
-         comm,
-         std::vector<Discretization::Node<dim>>(nodes.nodes().begin(),
-                                                nodes.nodes().begin() +
-                                                  nodes.n_owned())))
+  for (const auto &part :
+       Utilities::MPI::all_gather(comm,
+                                  std::vector<Discretization::Node<dim>>(
+                                    nodes.nodes().begin(),
+                                    nodes.nodes().begin() + nodes.n_owned())))
     all.insert(all.end(), part.begin(), part.end());
   const unsigned int  n = all.size();
   std::vector<double> m(n, 0.), theta(n, 0.);
-  auto weight = [&](const unsigned int i, const unsigned int j) {
+  auto                weight = [&](const unsigned int i, const unsigned int j) {
     return i == j ? 0. :
-                    exact.weight(all[i].location, horizon, all[j].cell) *
+                                   exact.weight(all[i].location, horizon, all[j].cell) *
                       all[j].volume();
   };
   std::size_t broken_pairs = 0;
@@ -134,8 +139,8 @@ check(const std::string &model_name, const unsigned int n_cells,
         const double w = weight(i, j);
         if (w == 0)
           continue;
-        const Tensor<1, dim> xi = all[j].location - all[i].location;
-        const double         r  = xi.norm();
+        const Tensor<1, dim> xi    = all[j].location - all[i].location;
+        const double         r     = xi.norm();
         const double         omega = model->influence(r, horizon);
         m[i] += omega * r * r * w;
         if (crosses_crack(all[i].location, all[j].location, x_c, y_c))
@@ -162,10 +167,11 @@ check(const std::string &model_name, const unsigned int n_cells,
           if (w == 0 ||
               crosses_crack(all[i].location, all[j].location, x_c, y_c))
             continue;
-          const Tensor<1, dim> xi = all[j].location - all[i].location;
-          const double         r  = xi.norm();
+          const Tensor<1, dim> xi  = all[j].location - all[i].location;
+          const double         r   = xi.norm();
           const Tensor<1, dim> nij = xi / r;
-          const double e = nij * (field(all[j].location) - field(all[i].location));
+          const double         e =
+            nij * (field(all[j].location) - field(all[i].location));
           const double t =
             model->dilatation_coefficient(m[i], r, horizon) * theta[i] +
             model->dilatation_coefficient(m[j], r, horizon) * theta[j] +
@@ -180,14 +186,14 @@ check(const std::string &model_name, const unsigned int n_cells,
           norm2 += f[c] * f[c];
         }
     }
-  diff2 = Utilities::MPI::sum(diff2, comm);
-  norm2 = Utilities::MPI::sum(norm2, comm);
+  diff2                 = Utilities::MPI::sum(diff2, comm);
+  norm2                 = Utilities::MPI::sum(norm2, comm);
   const double relative = std::sqrt(diff2 / norm2);
 
   std::cout << dim << "D " << model_name << ": " << n << " nodes, "
             << broken_pairs << " bonds cross the crack, " << n_pairs
-            << " broken by hand and synchronised, "
-            << state.n_broken_global() << " broken bond ends at owned nodes\n"
+            << " broken by hand and synchronised, " << state.n_broken_global()
+            << " broken bond ends at owned nodes\n"
             << "  nodes on the stencil " << stencil_before << " before, "
             << Utilities::MPI::sum(op.n_stencil_nodes(), comm) << " after\n"
             << "  forces against the brute-force sum <= 1e-12: "

@@ -71,11 +71,11 @@ check(const std::string &name,
   prm.leave_subsection();
   const auto model = Models::ModelRegistry<dim>::create(model_name, prm);
 
-  const double horizon = m_ratio; // h = 1 on the coarse cells
+  const double                 horizon = m_ratio; // h = 1 on the coarse cells
   Discretization::NodeSet<dim> nodes;
   nodes.reinit(dof_handler, 2 * (horizon + std::sqrt(dim)));
   const PeriDEAL::Quadrature::ExactPartialVolume<dim> exact;
-  Discretization::NeighborList<dim>         stored, compact;
+  Discretization::NeighborList<dim>                   stored, compact;
   stored.reinit(nodes, horizon, exact, model->is_state_based(), true);
   compact.reinit(nodes, horizon, exact, model->is_state_based(), false);
 
@@ -91,7 +91,7 @@ check(const std::string &name,
   op_stored.reinit(nodes, stored, *model, horizon);
 
   // A smooth non-linear field.
-  const IndexSet &owned = reference.owned_dofs();
+  const IndexSet               &owned = reference.owned_dofs();
   TrilinosWrappers::MPI::Vector u_owned(owned, comm), ku(owned, comm);
   typename Operators::BondOperator<dim>::VectorType u, force, force_2, diagonal;
   op.initialize_dof_vector(u);
@@ -150,8 +150,8 @@ check(const std::string &name,
   const double relative = std::sqrt(diff2 / norm2);
   std::cout << std::setw(34) << std::left << name << " nodes "
             << tria.n_global_active_cells() << ", on the stencil "
-            << Utilities::MPI::sum(op.n_stencil_nodes(), comm)
-            << ", on lists " << Utilities::MPI::sum(op.n_list_nodes(), comm)
+            << Utilities::MPI::sum(op.n_stencil_nodes(), comm) << ", on lists "
+            << Utilities::MPI::sum(op.n_list_nodes(), comm)
             << "\n  K u + F(u) <= 1e-12 |K u|: "
             << (relative <= 1e-12 ? "yes" : "NO") << "\n  diagonal <= 1e-12: "
             << (diag_diff <= 1e-12 * diag_max ? "yes" : "NO")
@@ -171,16 +171,46 @@ main(int argc, char **argv)
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
     std::cout.setstate(std::ios::failbit);
 
-  check<3>("3D LPS, uniform", "linear peridynamic solid", "plane strain",
-           0.3, 9, 3, false);
-  check<3>("3D bond-based, uniform", "bond-based", "plane strain", 0.25, 8,
-           2.5, false);
-  check<3>("3D LPS, refined corner", "linear peridynamic solid",
-           "plane strain", 0.2, 5, 2, true);
-  check<2>("2D LPS plane strain, uniform", "linear peridynamic solid",
-           "plane strain", 0.3, 20, 3, false);
-  check<2>("2D bond-based plane stress", "bond-based", "plane stress",
-           1. / 3, 16, 3.5, false);
-  check<2>("2D LPS plane stress, refined", "linear peridynamic solid",
-           "plane stress", 0.25, 10, 3, true);
+  check<3>("3D LPS, uniform",
+           "linear peridynamic solid",
+           "plane strain",
+           0.3,
+           9,
+           3,
+           false);
+  check<3>("3D bond-based, uniform",
+           "bond-based",
+           "plane strain",
+           0.25,
+           8,
+           2.5,
+           false);
+  check<3>("3D LPS, refined corner",
+           "linear peridynamic solid",
+           "plane strain",
+           0.2,
+           5,
+           2,
+           true);
+  check<2>("2D LPS plane strain, uniform",
+           "linear peridynamic solid",
+           "plane strain",
+           0.3,
+           20,
+           3,
+           false);
+  check<2>("2D bond-based plane stress",
+           "bond-based",
+           "plane stress",
+           1. / 3,
+           16,
+           3.5,
+           false);
+  check<2>("2D LPS plane stress, refined",
+           "linear peridynamic solid",
+           "plane stress",
+           0.25,
+           10,
+           3,
+           true);
 }

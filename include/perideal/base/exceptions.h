@@ -3,6 +3,8 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 namespace PeriDEAL
@@ -23,6 +25,18 @@ namespace PeriDEAL
                  std::string,
                  << "Invalid value '" << arg2 << "' for the parameter '" << arg1
                  << "': " << arg3 << '.');
+
+  /**
+   * A number for a message: up to 10 significant digits, no trailing
+   * zeros ("0.03", not "0.030000"; "3.0001", not "3").
+   */
+  inline std::string
+  format_number(const double value)
+  {
+    std::ostringstream s;
+    s << std::setprecision(10) << value;
+    return s.str();
+  }
 
   /**
    * A name (of a model, algorithm, boundary treatment, ...) that is not

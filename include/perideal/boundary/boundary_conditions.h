@@ -143,6 +143,7 @@ namespace PeriDEAL
       std::vector<types::boundary_id> dirichlet_ids;
       std::vector<bool>               dirichlet_components;
       double                          layer_thickness = 1;
+      std::string                     layer_thickness_text = "1";
       std::vector<types::boundary_id> traction_ids;
 
       std::unique_ptr<Functions::ParsedFunction<dim>> dirichlet_displacement;

@@ -119,14 +119,14 @@ namespace PeriDEAL
       used_uniform_grid_table() const;
 
     private:
-      std::vector<std::size_t> offsets; // size n_nodes + 1
-      std::vector<Bond>        all_bonds;
-      std::vector<bool>        listed;
-      std::vector<bool>        full;
-      std::vector<bool>        stored;
-      std::size_t              owned_bonds = 0;
-      bool                     uniform     = false;
-      Lattice<dim>             grid;
+      std::vector<std::size_t>                     offsets; // size n_nodes + 1
+      std::vector<Bond>                            all_bonds;
+      std::vector<bool>                            listed;
+      std::vector<bool>                            full;
+      std::vector<bool>                            stored;
+      std::size_t                                  owned_bonds = 0;
+      bool                                         uniform     = false;
+      Lattice<dim>                                 grid;
       std::vector<Quadrature::WeightedOffset<dim>> full_stencil;
     };
   } // namespace Discretization

@@ -165,17 +165,17 @@ namespace PeriDEAL
       /// The shared stencil: one entry per offset.
       struct Stencil
       {
-        std::vector<std::ptrdiff_t>           slot_offset;
-        std::array<std::vector<double>, dim>  n;
-        std::vector<double>                   g, a, b;
-        double                                node_factor = 0;
+        std::vector<std::ptrdiff_t>          slot_offset;
+        std::array<std::vector<double>, dim> n;
+        std::vector<double>                  g, a, b;
+        double                               node_factor = 0;
       };
 
-      const Discretization::NodeSet<dim>      *nodes      = nullptr;
-      const Discretization::NeighborList<dim> *lists      = nullptr;
-      const Models::Model<dim>                *model      = nullptr;
-      const Discretization::BondState<dim>    *bond_state = nullptr;
-      double                                   horizon    = 0;
+      const Discretization::NodeSet<dim>      *nodes       = nullptr;
+      const Discretization::NeighborList<dim> *lists       = nullptr;
+      const Models::Model<dim>                *model       = nullptr;
+      const Discretization::BondState<dim>    *bond_state  = nullptr;
+      double                                   horizon     = 0;
       bool                                     state_based = true;
       bool                                     use_lattice = false;
 
@@ -184,8 +184,8 @@ namespace PeriDEAL
       std::vector<std::size_t>                           slot;
       std::size_t                                        n_slots = 0;
       std::vector<double>                                m;
-      double stencil_weighted_volume = 0; // m of a full neighbourhood
-      Stencil                                            stencil;
+      double  stencil_weighted_volume = 0; // m of a full neighbourhood
+      Stencil stencil;
 
       std::vector<Chunk>        theta_chunks, force_chunks;
       std::vector<unsigned int> theta_list_nodes, force_list_nodes;
@@ -198,9 +198,9 @@ namespace PeriDEAL
       std::vector<double>        list_theta_scale; // m_0 / m_i per node
       std::vector<int>           stencil_lookup;   // dense offset -> index
       int                        stencil_bound = 0;
-      std::vector<unsigned int> owned_slots;
-      unsigned int              n_owned_stencil = 0;
-      std::size_t               bond_visits     = 0;
+      std::vector<unsigned int>  owned_slots;
+      unsigned int               n_owned_stencil = 0;
+      std::size_t                bond_visits     = 0;
 
       // Scratch: displacement, force, s * theta and s per slot.
       mutable std::array<AlignedVector<double>, dim> u_slot, f_slot;

@@ -75,8 +75,7 @@ namespace PeriDEAL
 
       /// Entry (i, i) of the operator (owned i); only the diagonal is known.
       double
-      el(const types::global_dof_index i,
-         const types::global_dof_index j) const
+      el(const types::global_dof_index i, const types::global_dof_index j) const
       {
         AssertThrow(i == j,
                     ExcMessage("Only diagonal entries of a matrix-free "

@@ -56,9 +56,9 @@ namespace PeriDEAL
      * choice does not depend on the partition.
      *
      * <h3>Equations</h3>
-     * Body node i: \f$-\sum_j \mathbf f_{ij}\beta_{ij}V_jV_i = \mathbf b_iV_i\f$
-     * (paper Eq. 33) over its completed neighbourhood. Surface node s with
-     * outward normal \f$\mathbf n_s\f$ and area \f$A_s\f$ (paper Eq. 36):
+     * Body node i: \f$-\sum_j \mathbf f_{ij}\beta_{ij}V_jV_i = \mathbf
+     * b_iV_i\f$ (paper Eq. 33) over its completed neighbourhood. Surface node s
+     * with outward normal \f$\mathbf n_s\f$ and area \f$A_s\f$ (paper Eq. 36):
      * \f$\sum \alpha_{jk}\mathbf f_{jk}\beta_{jk}V_jV_k = \mathbf p_sA_s\f$
      * over the bonds from j (inner side) to k (outer side) whose segment
      * crosses the face; \f$\alpha\f$ is 1 inside the face and is halved for
@@ -109,13 +109,13 @@ namespace PeriDEAL
        * the grid is not uniform.
        */
       void
-      reinit(const DoFHandler<dim>              &dof_handler,
-             const Discretization::NodeSet<dim> &nodes,
-             const Models::Model<dim>           &model,
-             const double                        horizon,
+      reinit(const DoFHandler<dim>                &dof_handler,
+             const Discretization::NodeSet<dim>   &nodes,
+             const Models::Model<dim>             &model,
+             const double                          horizon,
              const Quadrature::PartialVolume<dim> &algorithm,
-             const bool                          with_surface_nodes,
-             const unsigned int                  taylor_order);
+             const bool                            with_surface_nodes,
+             const unsigned int                    taylor_order);
 
       /// The unknowns owned by this process.
       const IndexSet &

@@ -68,13 +68,13 @@ namespace PeriDEAL
 
 /// Register the problem type @p Class (a template over dim) under @p name.
 #define PERIDEAL_REGISTER_PROBLEM_TYPE(Class, name, description) \
-  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<2>,   \
-                          Class<2>,                               \
-                          name,                                   \
-                          description)                            \
-  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<3>,   \
-                          Class<3>,                               \
-                          name,                                   \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<2>,  \
+                          Class<2>,                              \
+                          name,                                  \
+                          description)                           \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<3>,  \
+                          Class<3>,                              \
+                          name,                                  \
                           description)
 
 #endif
