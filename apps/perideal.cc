@@ -77,6 +77,7 @@ namespace
     ParameterHandler prm;
     PeriDEAL::Problems::Simulator<dim>::declare_parameters(prm);
     prm.parse_input(file);
+    PeriDEAL::Problems::Simulator<dim>::check_input_file(file, prm);
     // The simulation is destroyed before an error propagates: its timer
     // then finishes quietly instead of warning about an exception in flight.
     std::string other_error;

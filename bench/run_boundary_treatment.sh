@@ -48,7 +48,12 @@ run() {
   horizon=$(awk "BEGIN{printf \"%.17g\", $m/$nx}")
   # 'none' and 'fictitious layer': Dirichlet layer of the outermost nodes.
   layer=$(awk "BEGIN{printf \"%.6g\", 0.6/$m}")
+  # Only the selected treatment's subsection may hold entries.
+  local section=""
+  [ "$treatment" = none ] ||
+    section="  subsection $treatment\\n    set Taylor order = ${n:-1}\\n  end"
   sed -e "s/@NX@/$nx/g; s/@NY@/$ny/g; s/@M@/$m/g; s/@N@/${n:-1}/g" \
+      -e "s/@TREATMENT_SECTION@/$section/" \
       -e "s/@TREATMENT@/$treatment/g; s/@HORIZON@/$horizon/g" \
       -e "s/@LAYER@/$layer/g; s/@VTU@/true/g; s#@DIR@#$out/vtu#g" \
       -e "s/@NAME@/$name/g; s#@SUMMARY@#$out/summary.csv#g" \

@@ -67,7 +67,9 @@ write_input() { # dim field spec value N summary
       b="0; 0; 0"
     fi
   fi
-  local horizon_entry
+  local horizon_entry plane=""
+  # 'Plane model' is a 2D entry (3D input with it is refused).
+  [ "$dim" = 2 ] && plane="set Plane model     = plane strain"
   if [ "$spec" = m-ratio ]; then horizon_entry="set m-ratio = $value"; else horizon_entry="set Length = $value"; fi
   cat <<PRM
 set Dimension = $dim
@@ -84,7 +86,7 @@ subsection Material model
   subsection linear peridynamic solid
     set Young's modulus = 1
     set Poisson's ratio = 0.25
-    set Plane model     = plane strain
+    $plane
   end
 end
 subsection Boundary conditions

@@ -12,8 +12,10 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/base/input_checks.h>
 #include <perideal/problems/simulator.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -226,6 +228,69 @@ namespace PeriDEAL
           "error maps. Empty: not written.");
       }
       prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::check_input_file(const std::string &file,
+                                     ParameterHandler  &prm)
+    {
+      const std::vector<InputEntry> entries = scan_input_file(file);
+
+      struct Selection
+      {
+        std::string              section; // empty: top level
+        std::string              selector;
+        std::vector<std::string> names;
+      };
+      const std::vector<Selection> selections = {
+        {"Material model", "Model", Models::ModelRegistry<dim>::names()},
+        {"Partial volumes",
+         "Algorithm",
+         Quadrature::PartialVolumeRegistry<dim>::names()},
+        {"Boundary treatment",
+         "Treatment",
+         Boundary::BoundaryTreatmentRegistry::names()},
+        {"", "Problem type", ProblemTypeRegistry<dim>::names()}};
+      for (const auto &entry : entries)
+        {
+          AssertThrow(dim == 2 || entry.path.back() != "Plane model",
+                      ExcMessage("The entry '" + entry.name() + "' (line " +
+                                 std::to_string(entry.line) +
+                                 ") applies to 2D only, and this run is " +
+                                 std::to_string(dim) +
+                                 "D. Remove it, or set 'Dimension = 2'."));
+          for (const auto &selection : selections)
+            {
+              const unsigned int depth = selection.section.empty() ? 0 : 1;
+              if (entry.path.size() < depth + 2 ||
+                  (depth == 1 && entry.path[0] != selection.section))
+                continue;
+              const std::string &plugin = entry.path[depth];
+              if (std::find(selection.names.begin(),
+                            selection.names.end(),
+                            plugin) == selection.names.end())
+                continue;
+              if (depth == 1)
+                prm.enter_subsection(selection.section);
+              const std::string selected = prm.get(selection.selector);
+              if (depth == 1)
+                prm.leave_subsection();
+              const std::string selector =
+                (depth == 1 ? selection.section + "/" : std::string()) +
+                selection.selector;
+              AssertThrow(plugin == selected,
+                          ExcMessage(
+                            "The entry '" + entry.name() + "' (line " +
+                            std::to_string(entry.line) + ") belongs to '" +
+                            plugin + "', but '" + selector + "' selects '" +
+                            selected + "', so it would be ignored. Set '" +
+                            selector + " = " + plugin +
+                            "', or move the entry to the subsection '" +
+                            selected + "'."));
+            }
+        }
     }
 
 

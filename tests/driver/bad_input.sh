@@ -154,6 +154,19 @@ expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n 
 out=$("$perideal" --threads 0 base.prm 2>&1); [ $? -ne 0 ] || fail "--threads 0 exited with 0"
 grep -qF -- "--threads takes a positive integer, not '0'" <<<"$out" || fail "--threads 0: $out"
 
+# Settings that used to be ignored silently: an entry set twice, entries of
+# a model that is not selected, 'Plane model' in 3D, a file that sets
+# nothing.
+expect_error 's/set m-ratio = 3/set m-ratio = 3\n  set m-ratio = 4/' \
+  "The entry 'Horizon/m-ratio' is set twice"
+expect_error "s/  subsection linear peridynamic solid/  subsection bond-based\n    set Young's modulus = 2\n  end\n  subsection linear peridynamic solid/" \
+  "belongs to 'bond-based', but 'Material model/Model' selects 'linear peridynamic solid'"
+expect_error "s/set Dimension = 2/set Dimension = 3/; s/set Lower corner = 0, 0/set Lower corner = 0, 0, 0/; s/set Upper corner = 1, 1/set Upper corner = 1, 1, 1/; s/set Subdivisions = 10, 10/set Subdivisions = 8, 8, 8/; s/set Variable names      = x,y/set Variable names      = x,y,z/; s/set Function expression = 1e-3\*x; 0/set Function expression = 1e-3*x; 0; 0/; s/    set Poisson's ratio = 0.25/    set Poisson's ratio = 0.25\n    set Plane model = plane stress/" \
+  "applies to 2D only, and this run is 3D"
+: > empty.prm
+out=$("$perideal" empty.prm 2>&1); [ $? -ne 0 ] || fail "an empty .prm exited with 0"
+grep -qF "sets no entry" <<<"$out" || fail "empty .prm: $out"
+
 # No parameter file, an unreadable one, unknown options.
 out=$("$perideal" 2>&1); [ $? -ne 0 ] || fail "no argument exited with 0"
 grep -qF "Usage: perideal" <<<"$out" || fail "no usage without arguments"

@@ -110,6 +110,17 @@ namespace PeriDEAL
       declare_parameters(ParameterHandler &prm);
 
       /**
+       * Checks of the parameter file @p file (already parsed into @p prm)
+       * that ParameterHandler does not make: an entry set twice, a file that
+       * sets nothing (scan_input_file()), entries in the subsection of a
+       * plugin that the file does not select (a material model, a
+       * partial-volume algorithm, a boundary treatment, a problem type), and
+       * `Plane model` in 3D. Each would otherwise be ignored silently.
+       */
+      static void
+      check_input_file(const std::string &file, ParameterHandler &prm);
+
+      /**
        * Read and check the entries; errors name the entry, the value and
        * what to do.
        */
