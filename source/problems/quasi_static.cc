@@ -21,6 +21,60 @@ namespace PeriDEAL
 {
   namespace Problems
   {
+    namespace
+    {
+      /**
+       * What the phases of the quasi-static problem read from the
+       * simulator, as one aggregate that each phase unpacks with a
+       * structured binding.
+       */
+      template <int dim>
+      struct Context
+      {
+        const MPI_Comm                                   communicator;
+        ConditionalOStream                              &pcout;
+        TimerOutput                                     &timer;
+        RunSummary                                      &summary;
+        const DoFHandler<dim>                           &dof_handler;
+        const parallel::distributed::Triangulation<dim> &triangulation;
+        const Discretization::NodeSet<dim>              &nodes;
+        const Discretization::NeighborList<dim>         &neighbor_lists;
+        const Models::Model<dim>                        &model;
+        const double                                     horizon;
+        const Boundary::BoundaryConditions<dim>         &boundary_conditions;
+        const Boundary::BoundaryTreatment               &treatment;
+        const std::string                               &treatment_name;
+        const Solvers::LinearSolver                     &linear_solver;
+        const Functions::ParsedFunction<dim>            *analytical_solution;
+        const IO::SolutionOutput<dim>                   &output;
+        const std::string                               &node_data_file;
+      };
+
+      template <int dim>
+      Context<dim>
+      context_of(Simulator<dim> &s)
+      {
+        return {s.get_communicator(),
+                s.get_pcout(),
+                s.get_timer(),
+                s.get_summary(),
+                s.get_dof_handler(),
+                s.get_triangulation(),
+                s.get_nodes(),
+                s.get_neighbor_lists(),
+                s.get_model(),
+                s.get_horizon(),
+                s.get_boundary_conditions(),
+                s.get_boundary_treatment(),
+                s.get_boundary_treatment_name(),
+                s.get_linear_solver(),
+                s.get_analytical_solution(),
+                s.get_output(),
+                s.get_node_data_file()};
+      }
+    } // namespace
+
+
     template <int dim>
     void
     QuasiStatic<dim>::declare_parameters(ParameterHandler &)
@@ -132,32 +186,23 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::assemble_and_solve_with_layer(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const MPI_Comm communicator =
-        simulator.get_communicator();
-      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
-      [[maybe_unused]] auto       &timer       = simulator.get_timer();
-      [[maybe_unused]] auto       &summary     = simulator.get_summary();
-      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
-      [[maybe_unused]] const auto &triangulation =
-        simulator.get_triangulation();
-      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
-      [[maybe_unused]] const auto &neighbor_lists =
-        simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto  &model   = simulator.get_model();
-      [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto  &boundary_conditions =
-        simulator.get_boundary_conditions();
-      [[maybe_unused]] const auto &treatment =
-        simulator.get_boundary_treatment();
-      [[maybe_unused]] const auto &treatment_name =
-        simulator.get_boundary_treatment_name();
-      [[maybe_unused]] const auto &linear_solver =
-        simulator.get_linear_solver();
-      [[maybe_unused]] const auto *analytical_solution =
-        simulator.get_analytical_solution();
-      [[maybe_unused]] const auto &output = simulator.get_output();
-      [[maybe_unused]] const auto &node_data_file =
-        simulator.get_node_data_file();
+      [[maybe_unused]] const auto [communicator,
+                                   pcout,
+                                   timer,
+                                   summary,
+                                   dof_handler,
+                                   triangulation,
+                                   nodes,
+                                   neighbor_lists,
+                                   model,
+                                   horizon,
+                                   boundary_conditions,
+                                   treatment,
+                                   treatment_name,
+                                   linear_solver,
+                                   analytical_solution,
+                                   output,
+                                   node_data_file] = context_of(simulator);
       const IndexSet &owned_dofs = dof_handler.locally_owned_dofs();
       const IndexSet &owned      = layer_operator.owned_unknowns();
       std::map<types::global_dof_index, double> prescribed;
@@ -325,32 +370,23 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::solve_matrix_free(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const MPI_Comm communicator =
-        simulator.get_communicator();
-      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
-      [[maybe_unused]] auto       &timer       = simulator.get_timer();
-      [[maybe_unused]] auto       &summary     = simulator.get_summary();
-      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
-      [[maybe_unused]] const auto &triangulation =
-        simulator.get_triangulation();
-      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
-      [[maybe_unused]] const auto &neighbor_lists =
-        simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto  &model   = simulator.get_model();
-      [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto  &boundary_conditions =
-        simulator.get_boundary_conditions();
-      [[maybe_unused]] const auto &treatment =
-        simulator.get_boundary_treatment();
-      [[maybe_unused]] const auto &treatment_name =
-        simulator.get_boundary_treatment_name();
-      [[maybe_unused]] const auto &linear_solver =
-        simulator.get_linear_solver();
-      [[maybe_unused]] const auto *analytical_solution =
-        simulator.get_analytical_solution();
-      [[maybe_unused]] const auto &output = simulator.get_output();
-      [[maybe_unused]] const auto &node_data_file =
-        simulator.get_node_data_file();
+      [[maybe_unused]] const auto [communicator,
+                                   pcout,
+                                   timer,
+                                   summary,
+                                   dof_handler,
+                                   triangulation,
+                                   nodes,
+                                   neighbor_lists,
+                                   model,
+                                   horizon,
+                                   boundary_conditions,
+                                   treatment,
+                                   treatment_name,
+                                   linear_solver,
+                                   analytical_solution,
+                                   output,
+                                   node_data_file] = context_of(simulator);
       using VectorType      = LinearAlgebra::distributed::Vector<double>;
       summary.n_unknowns    = dof_handler.n_dofs();
       const IndexSet &owned = dof_handler.locally_owned_dofs();
@@ -458,32 +494,23 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::assemble_and_solve(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const MPI_Comm communicator =
-        simulator.get_communicator();
-      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
-      [[maybe_unused]] auto       &timer       = simulator.get_timer();
-      [[maybe_unused]] auto       &summary     = simulator.get_summary();
-      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
-      [[maybe_unused]] const auto &triangulation =
-        simulator.get_triangulation();
-      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
-      [[maybe_unused]] const auto &neighbor_lists =
-        simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto  &model   = simulator.get_model();
-      [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto  &boundary_conditions =
-        simulator.get_boundary_conditions();
-      [[maybe_unused]] const auto &treatment =
-        simulator.get_boundary_treatment();
-      [[maybe_unused]] const auto &treatment_name =
-        simulator.get_boundary_treatment_name();
-      [[maybe_unused]] const auto &linear_solver =
-        simulator.get_linear_solver();
-      [[maybe_unused]] const auto *analytical_solution =
-        simulator.get_analytical_solution();
-      [[maybe_unused]] const auto &output = simulator.get_output();
-      [[maybe_unused]] const auto &node_data_file =
-        simulator.get_node_data_file();
+      [[maybe_unused]] const auto [communicator,
+                                   pcout,
+                                   timer,
+                                   summary,
+                                   dof_handler,
+                                   triangulation,
+                                   nodes,
+                                   neighbor_lists,
+                                   model,
+                                   horizon,
+                                   boundary_conditions,
+                                   treatment,
+                                   treatment_name,
+                                   linear_solver,
+                                   analytical_solution,
+                                   output,
+                                   node_data_file] = context_of(simulator);
       if (treatment.uses_fictitious_layer())
         {
           assemble_and_solve_with_layer(simulator);
@@ -582,37 +609,28 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::postprocess(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const MPI_Comm communicator =
-        simulator.get_communicator();
-      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
-      [[maybe_unused]] auto       &timer       = simulator.get_timer();
-      [[maybe_unused]] auto       &summary     = simulator.get_summary();
-      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
-      [[maybe_unused]] const auto &triangulation =
-        simulator.get_triangulation();
-      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
-      [[maybe_unused]] const auto &neighbor_lists =
-        simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto  &model   = simulator.get_model();
-      [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto  &boundary_conditions =
-        simulator.get_boundary_conditions();
-      [[maybe_unused]] const auto &treatment =
-        simulator.get_boundary_treatment();
-      [[maybe_unused]] const auto &treatment_name =
-        simulator.get_boundary_treatment_name();
-      [[maybe_unused]] const auto &linear_solver =
-        simulator.get_linear_solver();
-      [[maybe_unused]] const auto *analytical_solution =
-        simulator.get_analytical_solution();
-      [[maybe_unused]] const auto &output = simulator.get_output();
-      [[maybe_unused]] const auto &node_data_file =
-        simulator.get_node_data_file();
-      const unsigned int         n_owned = nodes.n_owned();
-      const bool                 layer   = treatment.uses_fictitious_layer();
-      std::vector<IO::NodeField> fields  = {{"node_volume", {}},
-                                            {"mpi_rank", {}},
-                                            {"constrained", {}}};
+      [[maybe_unused]] const auto [communicator,
+                                   pcout,
+                                   timer,
+                                   summary,
+                                   dof_handler,
+                                   triangulation,
+                                   nodes,
+                                   neighbor_lists,
+                                   model,
+                                   horizon,
+                                   boundary_conditions,
+                                   treatment,
+                                   treatment_name,
+                                   linear_solver,
+                                   analytical_solution,
+                                   output,
+                                   node_data_file] = context_of(simulator);
+      const unsigned int         n_owned           = nodes.n_owned();
+      const bool                 layer  = treatment.uses_fictitious_layer();
+      std::vector<IO::NodeField> fields = {{"node_volume", {}},
+                                           {"mpi_rank", {}},
+                                           {"constrained", {}}};
       const double rank = Utilities::MPI::this_mpi_process(communicator);
       for (unsigned int i = 0; i < n_owned; ++i)
         {
@@ -749,32 +767,23 @@ namespace PeriDEAL
     QuasiStatic<dim>::write_node_data(Simulator<dim>       &simulator,
                                       const Tensor<1, dim> &component_max) const
     {
-      [[maybe_unused]] const MPI_Comm communicator =
-        simulator.get_communicator();
-      [[maybe_unused]] auto       &pcout       = simulator.get_pcout();
-      [[maybe_unused]] auto       &timer       = simulator.get_timer();
-      [[maybe_unused]] auto       &summary     = simulator.get_summary();
-      [[maybe_unused]] const auto &dof_handler = simulator.get_dof_handler();
-      [[maybe_unused]] const auto &triangulation =
-        simulator.get_triangulation();
-      [[maybe_unused]] const auto &nodes = simulator.get_nodes();
-      [[maybe_unused]] const auto &neighbor_lists =
-        simulator.get_neighbor_lists();
-      [[maybe_unused]] const auto  &model   = simulator.get_model();
-      [[maybe_unused]] const double horizon = simulator.get_horizon();
-      [[maybe_unused]] const auto  &boundary_conditions =
-        simulator.get_boundary_conditions();
-      [[maybe_unused]] const auto &treatment =
-        simulator.get_boundary_treatment();
-      [[maybe_unused]] const auto &treatment_name =
-        simulator.get_boundary_treatment_name();
-      [[maybe_unused]] const auto &linear_solver =
-        simulator.get_linear_solver();
-      [[maybe_unused]] const auto *analytical_solution =
-        simulator.get_analytical_solution();
-      [[maybe_unused]] const auto &output = simulator.get_output();
-      [[maybe_unused]] const auto &node_data_file =
-        simulator.get_node_data_file();
+      [[maybe_unused]] const auto [communicator,
+                                   pcout,
+                                   timer,
+                                   summary,
+                                   dof_handler,
+                                   triangulation,
+                                   nodes,
+                                   neighbor_lists,
+                                   model,
+                                   horizon,
+                                   boundary_conditions,
+                                   treatment,
+                                   treatment_name,
+                                   linear_solver,
+                                   analytical_solution,
+                                   output,
+                                   node_data_file] = context_of(simulator);
       // Rows: kind (0 body, 1 surface), x, u, exact, normalized error.
       std::vector<double> rows;
       Vector<double>      exact(dim);
