@@ -15,8 +15,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
 
 using namespace PeriDEAL;
@@ -24,6 +26,16 @@ using namespace PeriDEAL::Quadrature;
 
 namespace
 {
+  // The text given after --m-ratio, for messages (as typed).
+  std::string
+  argv_m_ratio(const int argc, char **argv)
+  {
+    for (int i = 1; i + 1 < argc; ++i)
+      if (std::string(argv[i]) == "--m-ratio")
+        return argv[i + 1];
+    return "3";
+  }
+
   struct Options
   {
     int         dim          = 3;
@@ -128,6 +140,29 @@ namespace
           fail("unknown option '" + arg + "'");
       }
     (void)dim_given;
+    // Size guard: the coefficient table and the list of neighbours grow
+    // like m^dim; refuse before allocating what the machine cannot hold.
+    {
+      const double side  = o.m_ratio + 1.5;
+      const double table = 8. * std::pow(side, o.dim);
+      const double list  = (8. + 4. * o.dim) * std::pow(2 * side, o.dim);
+      const double gb    = (table + list) / 1073741824.;
+      if (gb > 4)
+        {
+          std::ostringstream message;
+          message << "--m-ratio " << argv_m_ratio(argc, argv)
+                  << " needs an estimated " << std::setprecision(3) << gb
+                  << " GB for the " << o.dim
+                  << "D weight table and its neighbour list; give an m-ratio "
+                     "below "
+                  << std::setprecision(3)
+                  << std::pow(4. * 1073741824. /
+                                (8. + (8. + 4. * o.dim) * std::pow(2., o.dim)),
+                              1. / o.dim) -
+                       1.5;
+          fail(message.str());
+        }
+    }
     return o;
   }
 

@@ -308,9 +308,10 @@ namespace PeriDEAL
 
       prm.enter_subsection("Geometry");
       {
-        mesh_kind    = prm.get("Mesh");
-        lower_corner = parse_point<dim>(prm.get("Lower corner"));
-        upper_corner = parse_point<dim>(prm.get("Upper corner"));
+        mesh_kind        = prm.get("Mesh");
+        prm_subdivisions = prm.get("Subdivisions");
+        lower_corner     = parse_point<dim>(prm.get("Lower corner"));
+        upper_corner     = parse_point<dim>(prm.get("Upper corner"));
         subdivisions.clear();
         for (const int n : Utilities::string_to_int(
                Utilities::split_string_list(prm.get("Subdivisions"))))
@@ -418,9 +419,93 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    Simulator<dim>::check_memory_estimate() const
+    {
+      // Nodes of the box before anything is allocated, as a double (a
+      // careless input can overflow any integer).
+      double n_nodes = std::pow(2., dim * double(global_refinements));
+      for (const auto n : subdivisions)
+        n_nodes *= n;
+      // Bytes per node, measured (doc/matrix-free-operator.md): about 2 KB
+      // for mesh, DoF handler, node set, constraints and vectors with the
+      // matrix-free operator, plus 6 KB for the AMG hierarchy of the local
+      // elasticity preconditioner; an assembled matrix stores dim rows of
+      // dim times the nodes within the coupling range, 12 bytes an entry,
+      // and a direct solver's factors several times that.
+      const double m =
+        horizon_specification == "m-ratio" ?
+          m_ratio :
+          horizon_length /
+            std::max(1e-300,
+                     (upper_corner[0] - lower_corner[0]) / subdivisions[0]);
+      // Calibrated on the 28^3 LPS case (110 KB per node assembled, m = 3).
+      const double reach   = model->is_state_based() ? 2 * m : m;
+      const double coupled = dim == 3 ? 4. / 3. * M_PI * reach * reach * reach :
+                                        M_PI * reach * reach;
+      // (2D: 1 KB and 1.5 KB; the 2000^2 run took 9.5 GB with local
+      // elasticity.)
+      double per_node = dim == 3 ? 2048 : 1024;
+      if (linear_solver.is_matrix_free())
+        {
+          if (linear_solver.preconditioner_name() == "local elasticity")
+            per_node += dim == 3 ? 6144 : 1536;
+        }
+      else
+        per_node += dim * dim * coupled * 12 *
+                    (linear_solver.method() == "direct" ? 2 : 1);
+      const double needed = n_nodes * per_node;
+
+      // Memory available to this job: MemAvailable of each host, shared
+      // among the processes on it.
+      double available = 0;
+      {
+        std::ifstream meminfo("/proc/meminfo");
+        std::string   key;
+        double        kb = 0;
+        std::string   unit;
+        while (meminfo >> key >> kb >> unit)
+          if (key == "MemAvailable:")
+            {
+              available = kb * 1024;
+              break;
+            }
+      }
+      MPI_Comm host;
+      MPI_Comm_split_type(communicator,
+                          MPI_COMM_TYPE_SHARED,
+                          0,
+                          MPI_INFO_NULL,
+                          &host);
+      const unsigned int on_host = Utilities::MPI::n_mpi_processes(host);
+      MPI_Comm_free(&host);
+      available = Utilities::MPI::sum(available / on_host, communicator);
+      if (available <= 0) // no /proc/meminfo: no guard
+        return;
+      AssertThrow(
+        needed <= 0.9 * available,
+        ExcInvalidInput(
+          "Geometry/Subdivisions",
+          prm_subdivisions,
+          "with 'Global refinements = " + std::to_string(global_refinements) +
+            "' this is " + format_number(n_nodes) +
+            " nodes, which need an estimated " +
+            format_number(needed / 1073741824.) + " GB, but only " +
+            format_number(available / 1073741824.) +
+            " GB are available; use fewer cells" +
+            (linear_solver.is_matrix_free() ?
+               std::string(", or more machines") :
+               std::string(", 'Linear solver/Operator = matrix-free' (about "
+                           "2 KB per node), or more machines"))));
+    }
+
+
+    template <int dim>
+    void
     Simulator<dim>::make_mesh()
     {
       TimerOutput::Scope scope(timer, "mesh");
+      if (mesh_kind == "subdivided box")
+        check_memory_estimate();
       if (mesh_kind == "subdivided box")
         GridGenerator::subdivided_hyper_rectangle(triangulation,
                                                   subdivisions,

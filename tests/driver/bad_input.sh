@@ -167,6 +167,11 @@ expect_error "s/set Dimension = 2/set Dimension = 3/; s/set Lower corner = 0, 0/
 out=$("$perideal" empty.prm 2>&1); [ $? -ne 0 ] || fail "an empty .prm exited with 0"
 grep -qF "sets no entry" <<<"$out" || fail "empty .prm: $out"
 
+# A size guard: a box far beyond the machine's memory is refused with the
+# estimate before anything is allocated.
+expect_error 's/set Subdivisions = 10, 10/set Subdivisions = 100000000, 100000000/' \
+  "nodes, which need an estimated"
+
 # No parameter file, an unreadable one, unknown options.
 out=$("$perideal" 2>&1); [ $? -ne 0 ] || fail "no argument exited with 0"
 grep -qF "Usage: perideal" <<<"$out" || fail "no usage without arguments"

@@ -21,6 +21,7 @@ expect_error "--m-ratio must be a finite number > 0" --m-ratio 0
 expect_error "--m-ratio must be a finite number > 0" --m-ratio nan
 expect_error "option --m-ratio expects a number, got 'three'" --m-ratio three
 expect_error "option --m-ratio needs a value" --m-ratio
+expect_error "--m-ratio 1e4 needs an estimated" --m-ratio 1e4
 expect_error "--dim must be 2 or 3" --dim 4
 expect_error "unknown algorithm 'exakt'" --algorithm exakt
 expect_error "unknown algorithm 'quasi-analytical' in 2D" --dim 2 --algorithm quasi-analytical

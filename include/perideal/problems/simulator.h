@@ -215,6 +215,14 @@ namespace PeriDEAL
       void
       check_output_paths();
 
+      /**
+       * Estimate the memory of a box mesh's run before anything is
+       * allocated, and refuse it with the estimate when it exceeds what the
+       * machines have.
+       */
+      void
+      check_memory_estimate() const;
+
       void
       make_mesh();
 
@@ -234,6 +242,7 @@ namespace PeriDEAL
       std::string               mesh_kind;
       Point<dim>                lower_corner, upper_corner;
       std::vector<unsigned int> subdivisions;
+      std::string               prm_subdivisions;
       unsigned int              global_refinements = 0;
       std::string               mesh_file;
       std::string               horizon_specification;
