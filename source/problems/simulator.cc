@@ -514,9 +514,40 @@ namespace PeriDEAL
                                                   true);
       else
         {
+          // GridIn's own messages ("(none)", "No vertices given") name
+          // neither the file nor the entry; every process reads the file, so
+          // every process fails alike.
           GridIn<dim> grid_in;
           grid_in.attach_triangulation(triangulation);
-          grid_in.read(mesh_file);
+          std::string error;
+          try
+            {
+              grid_in.read(mesh_file);
+              if (triangulation.n_global_active_cells() == 0)
+                error = "it holds no cells";
+            }
+          catch (const ExceptionBase &exc)
+            {
+              std::ostringstream info;
+              exc.print_info(info);
+              error = Utilities::trim(info.str());
+            }
+          catch (const std::exception &exc)
+            {
+              error = exc.what();
+            }
+          AssertThrow(
+            error.empty(),
+            ExcInvalidInput(
+              "Geometry/Mesh file",
+              mesh_file,
+              "reading it as a " + std::to_string(dim) + "D mesh failed (" +
+                (error.empty() ? "" : error) +
+                "); check that the extension names its format (.msh, .vtk, "
+                ".inp, .ucd, ...), that the file is complete, and that it "
+                "holds " +
+                std::to_string(dim) +
+                "D cells ('Dimension = " + std::to_string(dim) + "')"));
         }
       triangulation.refine_global(global_refinements);
 

@@ -98,6 +98,13 @@ expect_error 's/set Lower corner = 0, 0/set Lower corner = 0, 0\n  set Mesh = fi
 expect_error "s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/skewed_quad.inp|" \
   "Use a Cartesian mesh"
 expect_error 's/set Dimension = 2/set Dimension = 4/' "Dimension"
+# Mesh files that GridIn cannot read: the message names the file, the entry
+# and the dimension (a 2D mesh read as 3D used to say "No vertices given").
+printf 'this is not a mesh\n' > garbage.msh
+expect_error 's|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = garbage.msh|' \
+  "Invalid value 'garbage.msh' for the parameter 'Geometry/Mesh file': reading it as a 2D mesh failed"
+expect_error "s/set Dimension = 2/set Dimension = 3/; s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/l_shape.inp|; s/set Variable names      = x,y/set Variable names      = x,y,z/; s/set Function expression = 1e-3\\*x; 0/set Function expression = 1e-3*x; 0; 0/; s/set Upper corner = 1, 1/set Upper corner = 1, 1, 1/; s/set Subdivisions = 10, 10/set Subdivisions = 10, 10, 10/" \
+  "reading it as a 3D mesh failed" 2
 # Checks that fail on one process only (a non-box cell it owns, an output
 # path only some process writes) must stop every process with the message.
 expect_error "s|set Lower corner = 0, 0|set Mesh = file\n  set Mesh file = $source_dir/skewed_quad.inp|" \
