@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -91,6 +92,10 @@ namespace
       catch (const dealii::ExceptionBase &exc)
         {
           other_error = user_message(exc);
+        }
+      catch (const std::bad_alloc &)
+        {
+          throw;
         }
       catch (const std::exception &exc)
         {
@@ -201,6 +206,20 @@ main(int argc, char **argv)
         run<2>(first);
       else
         run<3>(first);
+    }
+  catch (const std::bad_alloc &)
+    {
+      // Out of memory on this process: say so on every process that gets
+      // here (another may be waiting for it; MPI then ends the job).
+      std::cerr << "\nperideal: error (process "
+                << Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)
+                << ")\n    Out of memory. Use fewer cells, 'Linear "
+                   "solver/Operator = matrix-free' (about 2 KB per node "
+                   "instead of the assembled matrix), or more machines."
+                << std::endl;
+      if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        MPI_Abort(MPI_COMM_WORLD, 1);
+      return 1;
     }
   catch (const std::exception &exc)
     {
