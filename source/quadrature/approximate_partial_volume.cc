@@ -18,7 +18,7 @@ namespace PeriDEAL
     {
       AssertThrow(horizon > 0,
                   ExcInvalidInput("horizon",
-                                  std::to_string(horizon),
+                                  format_number(horizon),
                                   "give a horizon > 0"));
       const double measure = cell.volume();
       if (measure <= 0)

@@ -17,7 +17,7 @@ namespace PeriDEAL
     {
       AssertThrow(horizon > 0,
                   ExcInvalidInput("horizon",
-                                  std::to_string(horizon),
+                                  format_number(horizon),
                                   "give a horizon > 0"));
       // Compare squares: on a uniform grid both sides are exact for
       // integer offsets and integer or half-integer horizons.

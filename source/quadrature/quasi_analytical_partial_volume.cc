@@ -275,7 +275,7 @@ namespace PeriDEAL
     {
       AssertThrow(m_ratio > 0 && std::isfinite(m_ratio),
                   ExcInvalidInput("m-ratio",
-                                  std::to_string(m_ratio),
+                                  format_number(m_ratio),
                                   "give a horizon-to-spacing ratio > 0"));
 
       // Algorithm 4, lines 1 to 4: reduce to 0 <= x_j <= y_j <= z_j.
@@ -293,7 +293,7 @@ namespace PeriDEAL
           AssertThrow(m2 >= 0.75,
                       ExcInvalidInput(
                         "m-ratio",
-                        std::to_string(m_ratio),
+                        format_number(m_ratio),
                         "the quasi-analytical algorithm does not cover the "
                         "node's own cell when m < sqrt(3)/2; use \"exact\""));
           return 1;
@@ -417,9 +417,9 @@ namespace PeriDEAL
       AssertThrow(on_grid,
                   ExcInvalidInput(
                     "cell",
-                    "a box of sides " + std::to_string(cell.side_length(0)) +
-                      " x " + std::to_string(cell.side_length(1)) + " x " +
-                      std::to_string(cell.side_length(2)),
+                    "a box of sides " + format_number(cell.side_length(0)) +
+                      " x " + format_number(cell.side_length(1)) + " x " +
+                      format_number(cell.side_length(2)),
                     "the quasi-analytical algorithm is defined on uniform "
                     "grids only (a cube whose centre is offset from the node "
                     "by an integer multiple of its side); use \"exact\" for "

@@ -42,7 +42,7 @@ namespace PeriDEAL
     {
       AssertThrow(std::isfinite(m_ratio) && m_ratio > 0,
                   ExcInvalidInput("m-ratio",
-                                  std::to_string(m_ratio),
+                                  format_number(m_ratio),
                                   "the ratio of horizon to grid spacing "
                                   "must be a finite number > 0"));
       bound = static_cast<int>(std::ceil(m_ratio + 0.5));
@@ -64,7 +64,7 @@ namespace PeriDEAL
                                  (dim == 3 ?
                                     ", " + std::to_string(offsets[i][dim - 1]) :
                                     std::string()) +
-                                 ") at m-ratio " + std::to_string(m_ratio) +
+                                 ") at m-ratio " + format_number(m_ratio) +
                                  "; use the \"exact\" algorithm."));
           wedge_table[index(offsets[i])] = betas[i];
         }
