@@ -213,10 +213,15 @@ namespace
     std::printf("PeriDEAL quadrature weights, %dD, m-ratio %g\n",
                 dim,
                 o.m_ratio);
-    std::printf("neighbourhood %s 1 + sum(beta) against %s = %.15g\n\n",
+    std::printf("neighbourhood %s 1 + sum(beta) against %s = %.15g\n",
                 dim == 2 ? "area" : "volume",
                 dim == 2 ? "pi m^2" : "4/3 pi m^3",
                 exact_measure);
+    if (o.m_ratio < 0.5 * std::sqrt(double(dim)))
+      std::printf("(m < sqrt(%d)/2: the ball does not contain the node's own "
+                  "cell, which counts by its exact part inside the ball)\n",
+                  dim);
+    std::printf("\n");
     std::printf("%-24s %10s %14s %14s\n",
                 "algorithm",
                 "neighbours",

@@ -1,4 +1,5 @@
 #include <perideal/base/exceptions.h>
+#include <perideal/quadrature/exact_partial_volume.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
 #include <algorithm>
@@ -173,7 +174,25 @@ namespace PeriDEAL
     double
     UniformGridWeights<dim>::neighbourhood_measure() const
     {
+      // The node's own cell counts fully where the ball contains it
+      // (m >= sqrt(d)/2, the half diagonal); below that only its part inside
+      // the ball, in closed form, so that the measure still compares with
+      // the ball's volume.
       long double sum = 1;
+      if (ratio < 0.5 * std::sqrt(double(dim)))
+        {
+          Point<dim> lower, upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[d] = -0.5;
+              upper[d] = 0.5;
+            }
+          sum =
+            ExactPartialVolume<dim>().weight(Point<dim>(),
+                                             ratio,
+                                             BoundingBox<dim>(
+                                               std::make_pair(lower, upper)));
+        }
       for (const auto &entry : neighbours())
         sum += entry.beta;
       return static_cast<double>(sum);

@@ -22,6 +22,14 @@ expect_error "--m-ratio must be a finite number > 0" --m-ratio nan
 expect_error "option --m-ratio expects a number, got 'three'" --m-ratio three
 expect_error "option --m-ratio needs a value" --m-ratio
 expect_error "--m-ratio 1e4 needs an estimated" --m-ratio 1e4
+# Below m = sqrt(d)/2 the ball does not contain the node's own cell: the
+# neighbourhood measure counts only its part, and the exact rule must still
+# match the ball's volume to round-off (it was off by 10% before).
+for d in 2 3; do
+  err=$("$tool" --summary --dim $d --m-ratio 0.6 | awk '$1 == "exact" { print $3 }')
+  awk -v e="$err" 'BEGIN { exit !(e < 1e-12) }' \
+    || fail "--summary --dim $d --m-ratio 0.6: exact relative error $err, not < 1e-12"
+done
 expect_error "--dim must be 2 or 3" --dim 4
 expect_error "unknown algorithm 'exakt'" --algorithm exakt
 expect_error "unknown algorithm 'quasi-analytical' in 2D" --dim 2 --algorithm quasi-analytical

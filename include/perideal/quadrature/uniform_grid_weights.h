@@ -78,8 +78,11 @@ namespace PeriDEAL
 
       /**
        * The numerical measure of the neighbourhood in units of the cell
-       * measure, \f$1 + \sum_j \beta_j\f$ (the node's own cell counts fully);
-       * Scabbia et al. 2022, Eq. 35.
+       * measure, \f$1 + \sum_j \beta_j\f$ (the node's own cell counts fully;
+       * Scabbia et al. 2022, Eq. 35) for \f$\bar m \ge \sqrt{d}/2\f$. For
+       * smaller m-ratios the ball does not contain the node's own cell, and
+       * that cell counts by its exact part inside the ball, so that the
+       * measure compares with the ball's volume at every m-ratio.
        */
       double
       neighbourhood_measure() const;
