@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace PeriDEAL
 {
@@ -62,5 +63,40 @@ namespace PeriDEAL
     if (access(p.c_str(), W_OK) != 0)
       return "the directory '" + p.string() + "' is not writable";
     return "";
+  }
+
+
+  std::string
+  write_then_rename(const std::string                         &path,
+                    const std::function<void(std::ostream &)> &write)
+  {
+    namespace fs = std::filesystem;
+    std::error_code code;
+    const fs::path  parent = fs::path(path).parent_path();
+    if (!parent.empty())
+      fs::create_directories(parent, code);
+    const std::string temporary = path + ".tmp";
+    std::string       error;
+    {
+      std::ofstream out(temporary);
+      if (!out)
+        error = "'" + temporary + "' cannot be opened for writing";
+      else
+        {
+          write(out);
+          out.close();
+          if (!out)
+            error = "writing '" + temporary + "' failed (disk full?)";
+        }
+    }
+    if (error.empty())
+      {
+        fs::rename(temporary, path, code);
+        if (code)
+          error = "renaming '" + temporary + "' failed: " + code.message();
+      }
+    if (!error.empty())
+      fs::remove(temporary, code);
+    return error;
   }
 } // namespace PeriDEAL

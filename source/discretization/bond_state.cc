@@ -23,24 +23,6 @@ namespace PeriDEAL
       bits.assign((first[n] + 63) / 64, 0);
       n_broken_of.assign(n, 0);
       pending.clear();
-
-      // Offsets of the stencil in a dense table, for bond_index().
-      stencil_bound = 0;
-      for (const auto &o : neighbor_lists.stencil())
-        for (unsigned int d = 0; d < dim; ++d)
-          stencil_bound = std::max(stencil_bound, std::abs(o.offset[d]));
-      std::size_t size = 1;
-      for (unsigned int d = 0; d < dim; ++d)
-        size *= 2 * stencil_bound + 1;
-      stencil_index.assign(neighbor_lists.stencil().empty() ? 0 : size, -1);
-      for (unsigned int k = 0; k < neighbor_lists.stencil().size(); ++k)
-        {
-          std::size_t s = 0;
-          for (int d = dim - 1; d >= 0; --d)
-            s = s * (2 * stencil_bound + 1) +
-                (neighbor_lists.stencil()[k].offset[d] + stencil_bound);
-          stencil_index[s] = k;
-        }
     }
 
 
@@ -88,19 +70,7 @@ namespace PeriDEAL
     BondState<dim>::bond_index(const unsigned int i, const unsigned int j) const
     {
       if (lists->has_full_stencil(i))
-        {
-          const auto &xi = lists->lattice().coordinates(i);
-          const auto &xj = lists->lattice().coordinates(j);
-          std::size_t s  = 0;
-          for (int d = dim - 1; d >= 0; --d)
-            {
-              const std::int64_t o = xj[d] - xi[d];
-              if (o < -stencil_bound || o > stencil_bound)
-                return -1;
-              s = s * (2 * stencil_bound + 1) + (o + stencil_bound);
-            }
-          return stencil_index[s];
-        }
+        return lists->stencil_index(i, j);
       const auto  list = lists->bonds(i);
       const auto  key  = (*nodes)[j].dofs[0];
       const auto *it =

@@ -3,6 +3,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -52,6 +53,25 @@ namespace PeriDEAL
                                                                   horizon / h);
           full_stencil = table->neighbours();
         }
+      // Offset -> stencil index, dense over [-bound, bound]^dim.
+      stencil_bound = 0;
+      for (const auto &o : full_stencil)
+        for (unsigned int d = 0; d < dim; ++d)
+          stencil_bound = std::max(stencil_bound, std::abs(o.offset[d]));
+      {
+        std::size_t size = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          size *= 2 * stencil_bound + 1;
+        offset_to_stencil.assign(full_stencil.empty() ? 0 : size, -1);
+        for (unsigned int k = 0; k < full_stencil.size(); ++k)
+          {
+            std::size_t q = 0;
+            for (int d = dim - 1; d >= 0; --d)
+              q = q * (2 * stencil_bound + 1) +
+                  (full_stencil[k].offset[d] + stencil_bound);
+            offset_to_stencil[q] = k;
+          }
+      }
 
       // Bucket grid: a neighbour's centre lies within horizon + half a cell
       // diameter, so the adjacent buckets hold every candidate.
@@ -255,6 +275,26 @@ namespace PeriDEAL
     NeighborList<dim>::stencil() const
     {
       return full_stencil;
+    }
+
+
+    template <int dim>
+    int
+    NeighborList<dim>::stencil_index(const unsigned int i,
+                                     const unsigned int j) const
+    {
+      if (offset_to_stencil.empty())
+        return -1;
+      std::size_t q = 0;
+      for (int d = dim - 1; d >= 0; --d)
+        {
+          const std::int64_t o =
+            grid.coordinates(j)[d] - grid.coordinates(i)[d];
+          if (o < -stencil_bound || o > stencil_bound)
+            return -1;
+          q = q * (2 * stencil_bound + 1) + (o + stencil_bound);
+        }
+      return offset_to_stencil[q];
     }
 
 

@@ -127,25 +127,7 @@ namespace PeriDEAL
       };
       const auto write_and_rename = [&](const std::string &name,
                                         const auto        &write) {
-        const std::string final_name = output_directory + "/" + name;
-        const std::string temporary  = final_name + ".tmp";
-        std::string       error;
-        {
-          std::ofstream out(temporary);
-          if (out)
-            write(out);
-          out.close();
-          if (!out)
-            error = "Writing '" + temporary + "' failed (disk full?).";
-        }
-        std::error_code code;
-        if (error.empty())
-          std::filesystem::rename(temporary, final_name, code);
-        if (code)
-          error = "Renaming '" + temporary + "' failed: " + code.message();
-        if (!error.empty())
-          std::filesystem::remove(temporary, code);
-        return error;
+        return write_then_rename(output_directory + "/" + name, write);
       };
       throw_on_any_rank(write_and_rename(piece(rank),
                                          [&](std::ostream &out) {

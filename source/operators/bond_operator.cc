@@ -58,17 +58,23 @@ namespace PeriDEAL
           nodes->relevant_dofs(),
           nodes->get_communicator());
       }
+      // Checks that may fail on one process only are reduced over all of
+      // them before anyone throws.
+      const MPI_Comm comm        = nodes->get_communicator();
+      bool           consecutive = true;
       vector_index.resize(n);
       for (unsigned int i = 0; i < n; ++i)
         {
           vector_index[i] = partitioner->global_to_local((*nodes)[i].dofs[0]);
           for (unsigned int c = 1; c < dim; ++c)
-            AssertThrow(partitioner->global_to_local((*nodes)[i].dofs[c]) ==
-                          vector_index[i] + c,
-                        ExcMessage("BondOperator needs the dim DoFs of a node "
-                                   "numbered consecutively (FESystem of "
-                                   "FE_DGQ(0) without renumbering)."));
+            consecutive = consecutive &&
+                          partitioner->global_to_local((*nodes)[i].dofs[c]) ==
+                            vector_index[i] + c;
         }
+      AssertThrow(Utilities::MPI::min(consecutive ? 1 : 0, comm) == 1,
+                  ExcMessage("BondOperator needs the dim DoFs of a node "
+                             "numbered consecutively (FESystem of "
+                             "FE_DGQ(0) without renumbering)."));
 
       // Slots: the lattice box on a uniform grid, unless it is much larger
       // than the node set (a scattered partition); node indices otherwise.
@@ -131,30 +137,10 @@ namespace PeriDEAL
             }
         }
 
-      // Offsets of the stencil in a dense table, for lists on the lattice.
-      stencil_bound = 0;
-      stencil_lookup.clear();
       if (use_lattice)
-        {
-          AssertThrow(lists->stencil().size() < 65536,
-                      ExcMessage("The stencil has more than 65535 offsets: "
-                                 "use a smaller m-ratio."));
-          for (const auto &o : lists->stencil())
-            for (unsigned int d = 0; d < dim; ++d)
-              stencil_bound = std::max(stencil_bound, std::abs(o.offset[d]));
-          std::size_t size = 1;
-          for (unsigned int d = 0; d < dim; ++d)
-            size *= 2 * stencil_bound + 1;
-          stencil_lookup.assign(size, -1);
-          for (unsigned int k = 0; k < lists->stencil().size(); ++k)
-            {
-              std::size_t q = 0;
-              for (int d = dim - 1; d >= 0; --d)
-                q = q * (2 * stencil_bound + 1) +
-                    (lists->stencil()[k].offset[d] + stencil_bound);
-              stencil_lookup[q] = k;
-            }
-        }
+        AssertThrow(lists->stencil().size() < 65536,
+                    ExcMessage("The stencil has more than 65535 offsets: "
+                               "use a smaller m-ratio."));
 
       for (unsigned int c = 0; c < dim; ++c)
         {
@@ -181,7 +167,7 @@ namespace PeriDEAL
             for_each_intact_bond(i, [&](const unsigned int j, const double) {
               complete = complete && lists->has_list(j);
             });
-          AssertThrow(complete,
+          AssertThrow(Utilities::MPI::min(complete ? 1 : 0, comm) == 1,
                       ExcMessage("A state-based model needs neighbour lists "
                                  "of the off-process neighbours of owned "
                                  "nodes: build the NeighborList with "
@@ -208,22 +194,6 @@ namespace PeriDEAL
     {
       return use_lattice && lists->has_full_stencil(i) &&
              !(bond_state != nullptr && bond_state->any_broken(i));
-    }
-
-
-    template <int dim>
-    unsigned int
-    BondOperator<dim>::stencil_index(const unsigned int i,
-                                     const unsigned int j) const
-    {
-      const auto &lattice = lists->lattice();
-      std::size_t q       = 0;
-      for (int d = dim - 1; d >= 0; --d)
-        q = q * (2 * stencil_bound + 1) +
-            (lattice.coordinates(j)[d] - lattice.coordinates(i)[d] +
-             stencil_bound);
-      Assert(stencil_lookup[q] >= 0, ExcInternalError());
-      return stencil_lookup[q];
     }
 
 
@@ -317,7 +287,7 @@ namespace PeriDEAL
                   for_each_intact_bond(i,
                                        [&](const unsigned int j, const double) {
                                          list_stencil_index.push_back(
-                                           stencil_index(i, j));
+                                           lists->stencil_index(i, j));
                                        });
                   const std::size_t n_bonds =
                     list_stencil_index.size() - list_first[i];
@@ -783,7 +753,6 @@ namespace PeriDEAL
         list_bonds.capacity() * sizeof(ListBond) +
         list_stencil_index.capacity() * sizeof(std::uint16_t) +
         list_theta_scale.capacity() * sizeof(double) +
-        stencil_lookup.capacity() * sizeof(int) +
         (2 * dim + 2) * n_slots * sizeof(double);
       return bytes;
     }

@@ -1,3 +1,5 @@
+#include <deal.II/base/mpi.h>
+
 #include <perideal/operators/constrained_operator.h>
 
 namespace PeriDEAL
@@ -15,19 +17,25 @@ namespace PeriDEAL
       const auto  local = part.locally_owned_size();
       prescribed_entry.assign(local, false);
       prescribed_value.assign(local, 0.);
+      bool only_values = true;
       for (unsigned int k = 0; k < local; ++k)
         {
           const auto dof = part.local_to_global(k);
           if (constraints.is_constrained(dof))
             {
-              AssertThrow(constraints.get_constraint_entries(dof)->empty(),
-                          ExcMessage("The PD operator eliminates only "
-                                     "prescribed values u_k = g_k, not "
-                                     "constraints that couple DoFs."));
+              only_values =
+                only_values && constraints.get_constraint_entries(dof)->empty();
               prescribed_entry[k] = true;
               prescribed_value[k] = constraints.get_inhomogeneity(dof);
             }
         }
+      // Reduced before throwing: a coupling constraint may exist on one
+      // process only.
+      AssertThrow(Utilities::MPI::min(only_values ? 1 : 0,
+                                      part.get_mpi_communicator()) == 1,
+                  ExcMessage("The PD operator eliminates only prescribed "
+                             "values u_k = g_k, not constraints that couple "
+                             "DoFs."));
       op->initialize_dof_vector(diag);
       op->initialize_dof_vector(work);
       op->compute_diagonal(diag);

@@ -6,6 +6,7 @@
 
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/operators/local_elasticity_operator.h>
 #include <perideal/problems/quasi_static.h>
@@ -818,38 +819,36 @@ namespace PeriDEAL
             add(1, surface[k].location, surface_displacement[k]);
         }
       const auto all = Utilities::MPI::gather(communicator, rows, 0);
-      if (Utilities::MPI::this_mpi_process(communicator) != 0)
-        return;
-      {
-        const std::filesystem::path parent =
-          std::filesystem::path(node_data_file).parent_path();
-        if (!parent.empty())
-          std::filesystem::create_directories(parent);
-      }
-      std::ofstream out(node_data_file);
-      AssertThrow(out,
-                  ExcInvalidInput("Output/Node data file",
-                                  node_data_file,
-                                  "the file cannot be written; check the "
-                                  "directory"));
-      const char *const names[] = {"x", "y", "z"};
-      out << "kind";
-      for (unsigned int c = 0; c < dim; ++c)
-        out << ',' << names[c];
-      for (unsigned int c = 0; c < dim; ++c)
-        out << ",u_" << names[c];
-      for (unsigned int c = 0; c < dim; ++c)
-        out << ",exact_" << names[c];
-      out << ",normalized_error\n" << std::setprecision(12);
-      const unsigned int width = 3 * dim + 2;
-      for (const auto &part : all)
-        for (std::size_t r = 0; r < part.size(); r += width)
-          {
-            out << (part[r] == 0 ? "body" : "surface");
-            for (unsigned int k = 1; k < width; ++k)
-              out << ',' << part[r + k];
-            out << '\n';
-          }
+      // Written by process 0 under a temporary name; the verdict is shared
+      // so that a failure there does not leave the others waiting.
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        error = write_then_rename(node_data_file, [&](std::ostream &out) {
+          const char *const names[] = {"x", "y", "z"};
+          out << "kind";
+          for (unsigned int c = 0; c < dim; ++c)
+            out << ',' << names[c];
+          for (unsigned int c = 0; c < dim; ++c)
+            out << ",u_" << names[c];
+          for (unsigned int c = 0; c < dim; ++c)
+            out << ",exact_" << names[c];
+          out << ",normalized_error\n" << std::setprecision(12);
+          const unsigned int width = 3 * dim + 2;
+          for (const auto &part : all)
+            for (std::size_t r = 0; r < part.size(); r += width)
+              {
+                out << (part[r] == 0 ? "body" : "surface");
+                for (unsigned int k = 1; k < width; ++k)
+                  out << ',' << part[r + k];
+                out << '\n';
+              }
+        });
+      throw_on_any_rank(error.empty() ?
+                          error :
+                          "Invalid value '" + node_data_file +
+                            "' for the parameter 'Output/Node data file': " +
+                            error + ".",
+                        communicator);
     }
 
 

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <functional>
+#include <ostream>
 #include <sstream>
 #include <string>
 
@@ -62,6 +64,17 @@ namespace PeriDEAL
    */
   std::string
   check_writable_directory(const std::string &path);
+
+  /**
+   * Write the file @p path through @p write under the temporary name
+   * "<path>.tmp" and rename it into place when complete: a run killed while
+   * writing leaves the previous file intact, never a truncated one. Creates
+   * the parent directory if missing. Throws nothing: returns an empty
+   * string, or what went wrong (for throw_on_any_rank()).
+   */
+  std::string
+  write_then_rename(const std::string                         &path,
+                    const std::function<void(std::ostream &)> &write);
 } // namespace PeriDEAL
 
 #endif

@@ -95,8 +95,6 @@ namespace PeriDEAL
       std::vector<std::uint64_t>                           bits;
       std::vector<unsigned int>                            n_broken_of;
       std::vector<std::pair<std::uint64_t, std::uint64_t>> pending;
-      std::vector<int>                                     stencil_index;
-      int                                                  stencil_bound = 0;
 
       /// Set the bit of bond k of node i; whether it was intact.
       bool

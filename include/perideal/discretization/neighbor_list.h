@@ -106,6 +106,14 @@ namespace PeriDEAL
       const std::vector<Quadrature::WeightedOffset<dim>> &
       stencil() const;
 
+      /**
+       * On a uniform grid: the index in stencil() of the lattice offset
+       * from node @p i to node @p j, or -1 when that offset is not in the
+       * stencil (a dense table, built once; not for hot loops).
+       */
+      int
+      stencil_index(const unsigned int i, const unsigned int j) const;
+
       /// The lattice of the node set (uniformity decided here, once).
       const Lattice<dim> &
       lattice() const;
@@ -128,6 +136,8 @@ namespace PeriDEAL
       bool                                         uniform     = false;
       Lattice<dim>                                 grid;
       std::vector<Quadrature::WeightedOffset<dim>> full_stencil;
+      std::vector<int>                             offset_to_stencil;
+      int                                          stencil_bound = 0;
     };
   } // namespace Discretization
 } // namespace PeriDEAL

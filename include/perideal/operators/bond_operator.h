@@ -196,8 +196,6 @@ namespace PeriDEAL
       std::vector<ListBond>      list_bonds;
       std::vector<std::uint16_t> list_stencil_index;
       std::vector<double>        list_theta_scale; // m_0 / m_i per node
-      std::vector<int>           stencil_lookup;   // dense offset -> index
-      int                        stencil_bound = 0;
       std::vector<unsigned int>  owned_slots;
       unsigned int               n_owned_stencil = 0;
       std::size_t                bond_visits     = 0;
@@ -210,10 +208,6 @@ namespace PeriDEAL
       /// Whether node i is evaluated with the shared stencil.
       bool
       on_stencil(const unsigned int i) const;
-
-      /// The stencil index of the lattice offset from node i to node j.
-      unsigned int
-      stencil_index(const unsigned int i, const unsigned int j) const;
 
       /// Call f(j, w_ij) for every intact bond of node i.
       template <typename Function>

@@ -212,9 +212,6 @@ namespace PeriDEAL
       /// @}
 
     private:
-      void
-      check_output_paths();
-
       /**
        * Estimate the memory of a box mesh's run before anything is
        * allocated, and refuse it with the estimate when it exceeds what the
