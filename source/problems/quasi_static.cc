@@ -26,8 +26,7 @@ namespace PeriDEAL
     {
       /**
        * What the phases of the quasi-static problem read from the
-       * simulator, as one aggregate that each phase unpacks with a
-       * structured binding.
+       * simulator, gathered once per phase.
        */
       template <int dim>
       struct Context
@@ -187,56 +186,45 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::assemble_and_solve_with_layer(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const auto [communicator,
-                                   pcout,
-                                   timer,
-                                   summary,
-                                   dof_handler,
-                                   triangulation,
-                                   nodes,
-                                   neighbor_lists,
-                                   model,
-                                   horizon,
-                                   boundary_conditions,
-                                   treatment,
-                                   treatment_name,
-                                   linear_solver,
-                                   analytical_solution,
-                                   output,
-                                   node_data_file] = context_of(simulator);
-      const IndexSet &owned_dofs = dof_handler.locally_owned_dofs();
+      const auto      ctx        = context_of(simulator);
+      const IndexSet &owned_dofs = ctx.dof_handler.locally_owned_dofs();
       const IndexSet &owned      = layer_operator.owned_unknowns();
       std::map<types::global_dof_index, double> prescribed;
       {
-        TimerOutput::Scope scope(timer, "assembly");
-        system_rhs.reinit(owned, communicator);
-        boundary_conditions.check_boundary_ids(triangulation);
-        if (treatment.uses_surface_nodes())
+        TimerOutput::Scope scope(ctx.timer, "assembly");
+        system_rhs.reinit(owned, ctx.communicator);
+        ctx.boundary_conditions.check_boundary_ids(ctx.triangulation);
+        if (ctx.treatment.uses_surface_nodes())
           {
-            // Body force on the body nodes, boundary conditions on the
-            // surface nodes: Dirichlet values where prescribed, the traction
-            // times the face area in the force-flux equation otherwise.
-            for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            // Body force on the body ctx.nodes, boundary conditions on the
+            // surface ctx.nodes: Dirichlet values where prescribed, the
+            // traction times the face area in the force-flux equation
+            // otherwise.
+            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
               {
                 const Tensor<1, dim> b =
-                  boundary_conditions.body_force_value(nodes[i].location);
+                  ctx.boundary_conditions.body_force_value(
+                    ctx.nodes[i].location);
                 for (unsigned int c = 0; c < dim; ++c)
-                  system_rhs[layer_operator.unknown_index(nodes[i], c)] =
-                    nodes[i].volume() * b[c];
+                  system_rhs[layer_operator.unknown_index(ctx.nodes[i], c)] =
+                    ctx.nodes[i].volume() * b[c];
               }
-            const auto &mask = boundary_conditions.dirichlet_component_mask();
+            const auto &mask =
+              ctx.boundary_conditions.dirichlet_component_mask();
             for (const auto &node : layer_operator.owned_surface_nodes())
               {
                 const bool dirichlet =
-                  boundary_conditions.is_dirichlet_boundary(node.boundary_id);
+                  ctx.boundary_conditions.is_dirichlet_boundary(
+                    node.boundary_id);
                 const Tensor<1, dim> g =
                   dirichlet ?
-                    boundary_conditions.dirichlet_value(node.location) :
+                    ctx.boundary_conditions.dirichlet_value(node.location) :
                     Tensor<1, dim>();
                 const Tensor<1, dim> p =
-                  boundary_conditions.is_traction_boundary(node.boundary_id) ?
-                    boundary_conditions.traction_value(node.location,
-                                                       node.normal()) :
+                  ctx.boundary_conditions.is_traction_boundary(
+                    node.boundary_id) ?
+                    ctx.boundary_conditions.traction_value(node.location,
+                                                           node.normal()) :
                     Tensor<1, dim>();
                 for (unsigned int c = 0; c < dim; ++c)
                   if (dirichlet && mask[c])
@@ -244,9 +232,9 @@ namespace PeriDEAL
                   else
                     system_rhs[node.first_unknown + c] = node.area * p[c];
               }
-            summary.n_constrained_nodes =
+            ctx.summary.n_constrained_nodes =
               Utilities::MPI::sum(static_cast<unsigned int>(prescribed.size()),
-                                  communicator);
+                                  ctx.communicator);
           }
         else
           {
@@ -255,106 +243,117 @@ namespace PeriDEAL
             // loaded face has no equation that could hold it. Only bodies
             // whose every face is fully prescribed are well posed.
             bool all_prescribed = true;
-            for (const bool c : boundary_conditions.dirichlet_component_mask())
+            for (const bool c :
+                 ctx.boundary_conditions.dirichlet_component_mask())
               all_prescribed = all_prescribed && c;
-            for (const auto &cell : triangulation.active_cell_iterators())
+            for (const auto &cell : ctx.triangulation.active_cell_iterators())
               if (cell->is_locally_owned())
                 for (const unsigned int f : cell->face_indices())
                   if (cell->at_boundary(f) &&
-                      !boundary_conditions.is_dirichlet_boundary(
+                      !ctx.boundary_conditions.is_dirichlet_boundary(
                         cell->face(f)->boundary_id()))
                     all_prescribed = false;
             AssertThrow(
-              Utilities::MPI::min(all_prescribed ? 1 : 0, communicator) == 1,
+              Utilities::MPI::min(all_prescribed ? 1 : 0, ctx.communicator) ==
+                1,
               ExcInvalidInput(
                 "Boundary treatment/Treatment",
-                treatment_name,
+                ctx.treatment_name,
                 "a fictitious layer alone cannot carry free or loaded faces "
                 "(with completed neighbourhoods homogeneous strains cost no "
                 "energy, so the system is singular): list every boundary id "
                 "under 'Dirichlet boundary ids' with all components, or use "
                 "'surface nodes', whose force-flux equations carry "
                 "tractions and free faces"));
-            // Conditions as without treatment: Dirichlet layers. The
+            // Conditions as without ctx.treatment: Dirichlet layers. The
             // unknowns are the DoFs.
-            boundary_conditions.make_constraints(dof_handler,
-                                                 nodes,
-                                                 horizon,
-                                                 constraints);
-            load.reinit(owned_dofs, communicator);
-            boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+            ctx.boundary_conditions.make_constraints(ctx.dof_handler,
+                                                     ctx.nodes,
+                                                     ctx.horizon,
+                                                     constraints);
+            load.reinit(owned_dofs, ctx.communicator);
+            ctx.boundary_conditions.add_load(ctx.dof_handler,
+                                             ctx.nodes,
+                                             constraints,
+                                             load);
             for (const auto dof : owned_dofs)
               if (constraints.is_constrained(dof))
                 prescribed[dof] = constraints.get_inhomogeneity(dof);
               else
                 system_rhs[dof] = load[dof];
-            summary.n_constrained_nodes = Utilities::MPI::sum(
-              boundary_conditions.n_constrained_nodes(nodes, constraints),
-              communicator);
+            ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
+              ctx.boundary_conditions.n_constrained_nodes(ctx.nodes,
+                                                          constraints),
+              ctx.communicator);
           }
         system_rhs.compress(VectorOperation::insert);
         layer_operator.assemble(prescribed, system_matrix, system_rhs);
       }
-      summary.n_unknowns = owned.size();
-      summary.n_nonzeros = system_matrix.n_nonzero_elements();
-      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed() << " s] assembled: " << summary.n_unknowns
-            << " unknowns, " << summary.n_nonzeros << " nonzeros, "
-            << summary.n_constrained_nodes
-            << (treatment.uses_surface_nodes() ?
-                  " prescribed surface-node components" :
-                  " nodes in Dirichlet layers")
-            << " (non-symmetric)" << std::endl;
+      ctx.summary.n_unknowns = owned.size();
+      ctx.summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed()
+                << " s] assembled: " << ctx.summary.n_unknowns << " unknowns, "
+                << ctx.summary.n_nonzeros << " nonzeros, "
+                << ctx.summary.n_constrained_nodes
+                << (ctx.treatment.uses_surface_nodes() ?
+                      " prescribed surface-node components" :
+                      " nodes in Dirichlet layers")
+                << " (non-symmetric)" << std::endl;
 
-      TrilinosWrappers::MPI::Vector solution(owned, communicator);
+      TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
       {
-        TimerOutput::Scope scope(timer, "solve");
+        TimerOutput::Scope scope(ctx.timer, "solve");
         // Rigid translations for AMG: the component of each unknown.
         std::vector<std::vector<bool>> constant_modes(
           dim,
           std::vector<bool>(owned.n_elements(), false));
-        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
           for (unsigned int c = 0; c < dim; ++c)
             constant_modes[c][owned.index_within_set(
-              layer_operator.unknown_index(nodes[i], c))] = true;
+              layer_operator.unknown_index(ctx.nodes[i], c))] = true;
         for (const auto &node : layer_operator.owned_surface_nodes())
           for (unsigned int c = 0; c < dim; ++c)
             constant_modes[c][owned.index_within_set(node.first_unknown + c)] =
               true;
-        summary.solver = linear_solver.solve(system_matrix,
-                                             solution,
-                                             system_rhs,
-                                             constant_modes,
-                                             false);
+        ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
+                                                     solution,
+                                                     system_rhs,
+                                                     constant_modes,
+                                                     false);
       }
-      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed() << " s] solved with "
-            << summary.solver.method << ": " << summary.solver.iterations
-            << " iteration(s), relative residual " << std::scientific
-            << std::setprecision(2) << summary.solver.relative_residual
-            << std::defaultfloat << std::endl;
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed() << " s] solved with "
+                << ctx.summary.solver.method << ": "
+                << ctx.summary.solver.iterations
+                << " iteration(s), relative residual " << std::scientific
+                << std::setprecision(2) << ctx.summary.solver.relative_residual
+                << std::defaultfloat << std::endl;
       // Equilibrium of the assembled system (with a layer there is no
       // separate matrix-free form): |K u - f| / |K u| over the free rows.
       {
-        TrilinosWrappers::MPI::Vector ku(owned, communicator);
+        TrilinosWrappers::MPI::Vector ku(owned, ctx.communicator);
         system_matrix.vmult(ku, solution);
         const double scale = ku.l2_norm();
         ku -= system_rhs;
-        summary.equilibrium_residual = scale > 0 ? ku.l2_norm() / scale : 0.;
+        ctx.summary.equilibrium_residual =
+          scale > 0 ? ku.l2_norm() / scale : 0.;
       }
-      pcout << "           equilibrium check (assembled system): "
-            << "|F_int + F_ext| / |F_int| = " << std::scientific
-            << std::setprecision(2) << summary.equilibrium_residual
-            << std::defaultfloat << std::endl;
+      ctx.pcout << "           equilibrium check (assembled system): "
+                << "|F_int + F_ext| / |F_int| = " << std::scientific
+                << std::setprecision(2) << ctx.summary.equilibrium_residual
+                << std::defaultfloat << std::endl;
 
       // Body displacements back to the DoF numbering, surface ones aside.
-      TrilinosWrappers::MPI::Vector body(owned_dofs, communicator);
-      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+      TrilinosWrappers::MPI::Vector body(owned_dofs, ctx.communicator);
+      for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
         for (unsigned int c = 0; c < dim; ++c)
-          body[nodes[i].dofs[c]] =
-            solution[layer_operator.unknown_index(nodes[i], c)];
+          body[ctx.nodes[i].dofs[c]] =
+            solution[layer_operator.unknown_index(ctx.nodes[i], c)];
       body.compress(VectorOperation::insert);
-      displacement.reinit(owned_dofs, nodes.relevant_dofs(), communicator);
+      displacement.reinit(owned_dofs,
+                          ctx.nodes.relevant_dofs(),
+                          ctx.communicator);
       displacement = body;
       surface_displacement.clear();
       for (const auto &node : layer_operator.owned_surface_nodes())
@@ -369,96 +368,93 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    QuasiStatic<dim>::make_constraints_and_load(Simulator<dim> &simulator)
+    {
+      const auto ctx = context_of(simulator);
+      ctx.boundary_conditions.make_constraints(ctx.dof_handler,
+                                               ctx.nodes,
+                                               ctx.horizon,
+                                               constraints);
+      check_rigid_motions(simulator);
+      load.reinit(ctx.dof_handler.locally_owned_dofs(), ctx.communicator);
+      ctx.boundary_conditions.add_load(ctx.dof_handler,
+                                       ctx.nodes,
+                                       constraints,
+                                       load);
+    }
+
+
+    template <int dim>
+    void
     QuasiStatic<dim>::solve_matrix_free(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const auto [communicator,
-                                   pcout,
-                                   timer,
-                                   summary,
-                                   dof_handler,
-                                   triangulation,
-                                   nodes,
-                                   neighbor_lists,
-                                   model,
-                                   horizon,
-                                   boundary_conditions,
-                                   treatment,
-                                   treatment_name,
-                                   linear_solver,
-                                   analytical_solution,
-                                   output,
-                                   node_data_file] = context_of(simulator);
-      using VectorType      = LinearAlgebra::distributed::Vector<double>;
-      summary.n_unknowns    = dof_handler.n_dofs();
-      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      const auto ctx         = context_of(simulator);
+      using VectorType       = LinearAlgebra::distributed::Vector<double>;
+      ctx.summary.n_unknowns = ctx.dof_handler.n_dofs();
+      const IndexSet &owned  = ctx.dof_handler.locally_owned_dofs();
       VectorType      load_vector, rhs, prescribed, solution;
       {
-        TimerOutput::Scope scope(timer, "assembly");
-        boundary_conditions.make_constraints(dof_handler,
-                                             nodes,
-                                             horizon,
-                                             constraints);
-        check_rigid_motions(simulator);
-        load.reinit(owned, communicator);
-        boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+        TimerOutput::Scope scope(ctx.timer, "assembly");
+        make_constraints_and_load(simulator);
         constrained_operator.initialize(bond_operator, constraints);
         constrained_operator.initialize_dof_vector(load_vector);
         for (const auto dof : owned)
           load_vector[dof] = load[dof];
         constrained_operator.lift(load_vector, rhs, prescribed);
       }
-      summary.n_constrained_nodes = Utilities::MPI::sum(
-        boundary_conditions.n_constrained_nodes(nodes, constraints),
-        communicator);
+      ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
+        ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
+        ctx.communicator);
       const unsigned int n_stencil =
-        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), communicator);
+        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), ctx.communicator);
       const std::size_t visits =
-        Utilities::MPI::sum(bond_operator.n_bond_visits(), communicator);
+        Utilities::MPI::sum(bond_operator.n_bond_visits(), ctx.communicator);
       const double operator_mb =
         Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
-                            communicator);
-      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed()
-            << " s] matrix-free operator: " << dof_handler.n_dofs() << " DoFs, "
-            << n_stencil << " nodes on the shared stencil, "
-            << summary.n_nodes - n_stencil << " on lists, "
-            << summary.n_constrained_nodes << " nodes in Dirichlet layers; "
-            << visits << " bond visits per application, "
-            << std::setprecision(1) << operator_mb << " MB, "
-            << MultithreadInfo::n_threads() << " thread(s) per process"
-            << std::defaultfloat << std::endl;
+                            ctx.communicator);
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed()
+                << " s] matrix-free operator: " << ctx.dof_handler.n_dofs()
+                << " DoFs, " << n_stencil << " nodes on the shared stencil, "
+                << ctx.summary.n_nodes - n_stencil << " on lists, "
+                << ctx.summary.n_constrained_nodes
+                << " nodes in Dirichlet layers; " << visits
+                << " bond visits per application, " << std::setprecision(1)
+                << operator_mb << " MB, " << MultithreadInfo::n_threads()
+                << " thread(s) per process" << std::defaultfloat << std::endl;
 
       std::vector<std::vector<bool>> constant_modes;
-      if (linear_solver.preconditioner_name() == "local elasticity")
+      if (ctx.linear_solver.preconditioner_name() == "local elasticity")
         {
-          TimerOutput::Scope scope(timer, "preconditioner setup");
+          TimerOutput::Scope scope(ctx.timer, "preconditioner setup");
           Operators::LocalElasticityOperator<dim>::assemble(
-            nodes,
-            neighbor_lists.lattice(),
-            model,
+            ctx.nodes,
+            ctx.neighbor_lists.lattice(),
+            ctx.model,
             constraints,
             local_matrix);
-          DoFTools::extract_constant_modes(dof_handler,
+          DoFTools::extract_constant_modes(ctx.dof_handler,
                                            ComponentMask(dim, true),
                                            constant_modes);
         }
       constrained_operator.initialize_dof_vector(solution);
       {
-        TimerOutput::Scope scope(timer, "solve");
-        summary.solver = linear_solver.solve(constrained_operator,
-                                             solution,
-                                             rhs,
-                                             &local_matrix,
-                                             constant_modes);
+        TimerOutput::Scope scope(ctx.timer, "solve");
+        ctx.summary.solver = ctx.linear_solver.solve(constrained_operator,
+                                                     solution,
+                                                     rhs,
+                                                     &local_matrix,
+                                                     constant_modes);
       }
       solution += prescribed;
       solution.update_ghost_values();
-      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed() << " s] solved with "
-            << summary.solver.method << ": " << summary.solver.iterations
-            << " iteration(s), relative residual " << std::scientific
-            << std::setprecision(2) << summary.solver.relative_residual
-            << std::defaultfloat << std::endl;
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed() << " s] solved with "
+                << ctx.summary.solver.method << ": "
+                << ctx.summary.solver.iterations
+                << " iteration(s), relative residual " << std::scientific
+                << std::setprecision(2) << ctx.summary.solver.relative_residual
+                << std::defaultfloat << std::endl;
 
       // Equilibrium with the matrix-free forces at every free DoF.
       VectorType internal;
@@ -473,20 +469,20 @@ namespace PeriDEAL
               std::pow(internal.local_element(k) + load_vector.local_element(k),
                        2);
         }
-      free_residual2 = Utilities::MPI::sum(free_residual2, communicator);
-      internal2      = Utilities::MPI::sum(internal2, communicator);
-      summary.equilibrium_residual =
+      free_residual2 = Utilities::MPI::sum(free_residual2, ctx.communicator);
+      internal2      = Utilities::MPI::sum(internal2, ctx.communicator);
+      ctx.summary.equilibrium_residual =
         internal2 > 0 ? std::sqrt(free_residual2 / internal2) : 0.;
-      pcout << "           equilibrium check (matrix-free forces): "
-            << "|F_int + F_ext| / |F_int| = " << std::scientific
-            << std::setprecision(2) << summary.equilibrium_residual
-            << std::defaultfloat << std::endl;
+      ctx.pcout << "           equilibrium check (matrix-free forces): "
+                << "|F_int + F_ext| / |F_int| = " << std::scientific
+                << std::setprecision(2) << ctx.summary.equilibrium_residual
+                << std::defaultfloat << std::endl;
 
-      TrilinosWrappers::MPI::Vector owned_solution(owned, communicator);
+      TrilinosWrappers::MPI::Vector owned_solution(owned, ctx.communicator);
       for (const auto dof : owned)
         owned_solution[dof] = solution[dof];
       owned_solution.compress(VectorOperation::insert);
-      displacement.reinit(owned, nodes.relevant_dofs(), communicator);
+      displacement.reinit(owned, ctx.nodes.relevant_dofs(), ctx.communicator);
       displacement = owned_solution;
     }
 
@@ -495,62 +491,41 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::assemble_and_solve(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const auto [communicator,
-                                   pcout,
-                                   timer,
-                                   summary,
-                                   dof_handler,
-                                   triangulation,
-                                   nodes,
-                                   neighbor_lists,
-                                   model,
-                                   horizon,
-                                   boundary_conditions,
-                                   treatment,
-                                   treatment_name,
-                                   linear_solver,
-                                   analytical_solution,
-                                   output,
-                                   node_data_file] = context_of(simulator);
-      if (treatment.uses_fictitious_layer())
+      const auto ctx = context_of(simulator);
+      if (ctx.treatment.uses_fictitious_layer())
         {
           assemble_and_solve_with_layer(simulator);
           return;
         }
-      if (linear_solver.is_matrix_free())
+      if (ctx.linear_solver.is_matrix_free())
         {
           solve_matrix_free(simulator);
           return;
         }
-      summary.n_unknowns       = dof_handler.n_dofs();
-      const IndexSet &owned    = dof_handler.locally_owned_dofs();
-      const IndexSet  relevant = nodes.relevant_dofs();
+      ctx.summary.n_unknowns   = ctx.dof_handler.n_dofs();
+      const IndexSet &owned    = ctx.dof_handler.locally_owned_dofs();
+      const IndexSet  relevant = ctx.nodes.relevant_dofs();
       {
-        TimerOutput::Scope scope(timer, "assembly");
-        boundary_conditions.make_constraints(dof_handler,
-                                             nodes,
-                                             horizon,
-                                             constraints);
-        check_rigid_motions(simulator);
-        load.reinit(owned, communicator);
-        boundary_conditions.add_load(dof_handler, nodes, constraints, load);
+        TimerOutput::Scope scope(ctx.timer, "assembly");
+        make_constraints_and_load(simulator);
         system_rhs = load;
         pd_operator.assemble(system_matrix, constraints, system_rhs);
       }
-      summary.n_constrained_nodes = Utilities::MPI::sum(
-        boundary_conditions.n_constrained_nodes(nodes, constraints),
-        communicator);
-      summary.n_nonzeros = system_matrix.n_nonzero_elements();
-      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed() << " s] assembled: " << dof_handler.n_dofs()
-            << " DoFs, " << summary.n_nonzeros << " nonzeros, "
-            << summary.n_constrained_nodes << " nodes in Dirichlet layers"
-            << std::endl;
+      ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
+        ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
+        ctx.communicator);
+      ctx.summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed()
+                << " s] assembled: " << ctx.dof_handler.n_dofs() << " DoFs, "
+                << ctx.summary.n_nonzeros << " nonzeros, "
+                << ctx.summary.n_constrained_nodes
+                << " nodes in Dirichlet layers" << std::endl;
 
       // Symmetry of the system, measured: x^T A y against y^T A x.
-      TrilinosWrappers::MPI::Vector x(owned, communicator),
-        y(owned, communicator), ax(owned, communicator),
-        ay(owned, communicator);
+      TrilinosWrappers::MPI::Vector x(owned, ctx.communicator),
+        y(owned, ctx.communicator), ax(owned, ctx.communicator),
+        ay(owned, ctx.communicator);
       for (const auto dof : owned)
         {
           x[dof] = std::sin(1.3 * dof + 0.2);
@@ -563,46 +538,47 @@ namespace PeriDEAL
       const double asymmetry = std::abs(y * ax - x * ay);
       const bool   symmetric = asymmetry <= 1e-12 * ax.l2_norm() * y.l2_norm();
 
-      TrilinosWrappers::MPI::Vector solution(owned, communicator);
+      TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
       {
-        TimerOutput::Scope             scope(timer, "solve");
+        TimerOutput::Scope             scope(ctx.timer, "solve");
         std::vector<std::vector<bool>> constant_modes;
-        DoFTools::extract_constant_modes(dof_handler,
+        DoFTools::extract_constant_modes(ctx.dof_handler,
                                          ComponentMask(dim, true),
                                          constant_modes);
-        summary.solver = linear_solver.solve(system_matrix,
-                                             solution,
-                                             system_rhs,
-                                             constant_modes,
-                                             symmetric);
+        ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
+                                                     solution,
+                                                     system_rhs,
+                                                     constant_modes,
+                                                     symmetric);
         constraints.distribute(solution);
       }
-      displacement.reinit(owned, relevant, communicator);
+      displacement.reinit(owned, relevant, ctx.communicator);
       displacement = solution;
-      pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-            << simulator.elapsed() << " s] solved with "
-            << summary.solver.method << ": " << summary.solver.iterations
-            << " iteration(s), relative residual " << std::scientific
-            << std::setprecision(2) << summary.solver.relative_residual
-            << std::defaultfloat << (symmetric ? "" : " (non-symmetric)")
-            << std::endl;
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed() << " s] solved with "
+                << ctx.summary.solver.method << ": "
+                << ctx.summary.solver.iterations
+                << " iteration(s), relative residual " << std::scientific
+                << std::setprecision(2) << ctx.summary.solver.relative_residual
+                << std::defaultfloat << (symmetric ? "" : " (non-symmetric)")
+                << std::endl;
 
       // Equilibrium with the matrix-free forces: F_int(u) + F_ext = 0 at
       // every free DoF.
-      TrilinosWrappers::MPI::Vector internal(owned, communicator);
+      TrilinosWrappers::MPI::Vector internal(owned, ctx.communicator);
       pd_operator.apply(displacement, internal);
       double free_residual2 = 0;
       for (const auto dof : owned)
         if (!constraints.is_constrained(dof))
           free_residual2 += std::pow(internal[dof] + load[dof], 2);
       const double scale = internal.l2_norm();
-      free_residual2     = Utilities::MPI::sum(free_residual2, communicator);
-      summary.equilibrium_residual =
+      free_residual2 = Utilities::MPI::sum(free_residual2, ctx.communicator);
+      ctx.summary.equilibrium_residual =
         scale > 0 ? std::sqrt(free_residual2) / scale : 0.;
-      pcout << "           equilibrium check (matrix-free forces): "
-            << "|F_int + F_ext| / |F_int| = " << std::scientific
-            << std::setprecision(2) << summary.equilibrium_residual
-            << std::defaultfloat << std::endl;
+      ctx.pcout << "           equilibrium check (matrix-free forces): "
+                << "|F_int + F_ext| / |F_int| = " << std::scientific
+                << std::setprecision(2) << ctx.summary.equilibrium_residual
+                << std::defaultfloat << std::endl;
     }
 
 
@@ -610,36 +586,20 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::postprocess(Simulator<dim> &simulator)
     {
-      [[maybe_unused]] const auto [communicator,
-                                   pcout,
-                                   timer,
-                                   summary,
-                                   dof_handler,
-                                   triangulation,
-                                   nodes,
-                                   neighbor_lists,
-                                   model,
-                                   horizon,
-                                   boundary_conditions,
-                                   treatment,
-                                   treatment_name,
-                                   linear_solver,
-                                   analytical_solution,
-                                   output,
-                                   node_data_file] = context_of(simulator);
-      const unsigned int         n_owned           = nodes.n_owned();
-      const bool                 layer  = treatment.uses_fictitious_layer();
+      const auto                 ctx     = context_of(simulator);
+      const unsigned int         n_owned = ctx.nodes.n_owned();
+      const bool                 layer  = ctx.treatment.uses_fictitious_layer();
       std::vector<IO::NodeField> fields = {{"node_volume", {}},
                                            {"mpi_rank", {}},
                                            {"constrained", {}}};
-      const double rank = Utilities::MPI::this_mpi_process(communicator);
+      const double rank = Utilities::MPI::this_mpi_process(ctx.communicator);
       for (unsigned int i = 0; i < n_owned; ++i)
         {
-          fields[0].values.push_back(nodes[i].volume());
+          fields[0].values.push_back(ctx.nodes[i].volume());
           fields[1].values.push_back(rank);
           bool constrained = false;
-          if (!(layer && treatment.uses_surface_nodes()))
-            for (const auto dof : nodes[i].dofs)
+          if (!(layer && ctx.treatment.uses_surface_nodes()))
+            for (const auto dof : ctx.nodes[i].dofs)
               constrained = constrained || constraints.is_constrained(dof);
           fields[2].values.push_back(constrained);
         }
@@ -647,12 +607,12 @@ namespace PeriDEAL
         {
           // Quantities of the operator without a layer.
           std::vector<double> dilatation;
-          const bool          matrix_free = linear_solver.is_matrix_free();
+          const bool          matrix_free = ctx.linear_solver.is_matrix_free();
           if (matrix_free)
             {
               LinearAlgebra::distributed::Vector<double> u;
               bond_operator.initialize_dof_vector(u);
-              for (const auto dof : dof_handler.locally_owned_dofs())
+              for (const auto dof : ctx.dof_handler.locally_owned_dofs())
                 u[dof] = displacement[dof];
               u.update_ghost_values();
               bond_operator.compute_dilatation(u, dilatation);
@@ -668,12 +628,12 @@ namespace PeriDEAL
             {
               theta.values.push_back(dilatation[i]);
               m.values.push_back(weighted_volumes[i]);
-              neighbours.values.push_back(neighbor_lists.n_bonds(i));
+              neighbours.values.push_back(ctx.neighbor_lists.n_bonds(i));
             }
           fields.insert(fields.begin(), {theta, m, neighbours});
         }
 
-      if (analytical_solution != nullptr)
+      if (ctx.analytical_solution != nullptr)
         {
           IO::NodeField  error{"displacement_error", {}};
           IO::NodeField  normalized{"normalized_error", {}};
@@ -683,48 +643,52 @@ namespace PeriDEAL
           Tensor<1, dim> component_max;
           for (unsigned int i = 0; i < n_owned; ++i)
             {
-              analytical_solution->vector_value(nodes[i].location, exact);
+              ctx.analytical_solution->vector_value(ctx.nodes[i].location,
+                                                    exact);
               for (unsigned int c = 0; c < dim; ++c)
                 component_max[c] =
                   std::max(component_max[c], std::abs(exact[c]));
             }
           for (unsigned int c = 0; c < dim; ++c)
             component_max[c] =
-              Utilities::MPI::max(component_max[c], communicator);
+              Utilities::MPI::max(component_max[c], ctx.communicator);
           double normalized_max = 0;
           for (unsigned int i = 0; i < n_owned; ++i)
             {
-              analytical_solution->vector_value(nodes[i].location, exact);
+              ctx.analytical_solution->vector_value(ctx.nodes[i].location,
+                                                    exact);
               double e = 0, u = 0, n2 = 0;
               for (unsigned int c = 0; c < dim; ++c)
                 {
-                  const double diff = displacement[nodes[i].dofs[c]] - exact[c];
+                  const double diff =
+                    displacement[ctx.nodes[i].dofs[c]] - exact[c];
                   e += diff * diff;
                   u += exact[c] * exact[c];
                   if (component_max[c] > 0)
                     n2 += std::pow(diff / component_max[c], 2);
                 }
-              e2 += nodes[i].volume() * e;
-              u2 += nodes[i].volume() * u;
+              e2 += ctx.nodes[i].volume() * e;
+              u2 += ctx.nodes[i].volume() * u;
               e_max          = std::max(e_max, std::sqrt(e));
               u_max          = std::max(u_max, std::sqrt(u));
               normalized_max = std::max(normalized_max, std::sqrt(n2));
               error.values.push_back(std::sqrt(e));
               normalized.values.push_back(std::sqrt(n2));
             }
-          summary.errors.max_normalized =
-            Utilities::MPI::max(normalized_max, communicator);
-          if (!node_data_file.empty())
+          ctx.summary.errors.max_normalized =
+            Utilities::MPI::max(normalized_max, ctx.communicator);
+          if (!ctx.node_data_file.empty())
             write_node_data(simulator, component_max);
           fields.push_back(normalized);
-          // Surface nodes: the same measure at the face centres.
-          if (layer && treatment.uses_surface_nodes())
+          // Surface ctx.nodes: the same measure at the face centres.
+          if (layer && ctx.treatment.uses_surface_nodes())
             {
               double      surface_max = 0;
               const auto &surface     = layer_operator.owned_surface_nodes();
               for (unsigned int k = 0; k < surface.size(); ++k)
                 {
-                  analytical_solution->vector_value(surface[k].location, exact);
+                  ctx.analytical_solution->vector_value(surface[k].location,
+                                                        exact);
                   double n2 = 0;
                   for (unsigned int c = 0; c < dim; ++c)
                     if (component_max[c] > 0)
@@ -733,33 +697,35 @@ namespace PeriDEAL
                                      2);
                   surface_max = std::max(surface_max, std::sqrt(n2));
                 }
-              surface_max = Utilities::MPI::max(surface_max, communicator);
-              pcout << "           surface nodes: largest normalized error "
-                    << std::scientific << std::setprecision(3) << surface_max
-                    << std::defaultfloat << std::endl;
+              surface_max = Utilities::MPI::max(surface_max, ctx.communicator);
+              ctx.pcout << "           surface nodes: largest normalized error "
+                        << std::scientific << std::setprecision(3)
+                        << surface_max << std::defaultfloat << std::endl;
             }
-          e2                 = Utilities::MPI::sum(e2, communicator);
-          u2                 = Utilities::MPI::sum(u2, communicator);
-          e_max              = Utilities::MPI::max(e_max, communicator);
-          u_max              = Utilities::MPI::max(u_max, communicator);
-          summary.has_errors = true;
-          summary.errors.l2  = u2 > 0 ? std::sqrt(e2 / u2) : std::sqrt(e2);
-          summary.errors.max = u_max > 0 ? e_max / u_max : e_max;
+          e2                     = Utilities::MPI::sum(e2, ctx.communicator);
+          u2                     = Utilities::MPI::sum(u2, ctx.communicator);
+          e_max                  = Utilities::MPI::max(e_max, ctx.communicator);
+          u_max                  = Utilities::MPI::max(u_max, ctx.communicator);
+          ctx.summary.has_errors = true;
+          ctx.summary.errors.l2  = u2 > 0 ? std::sqrt(e2 / u2) : std::sqrt(e2);
+          ctx.summary.errors.max = u_max > 0 ? e_max / u_max : e_max;
           fields.push_back(error);
-          pcout << "           error against the analytical solution: "
-                << "relative L2 " << std::scientific << std::setprecision(3)
-                << summary.errors.l2 << ", relative max " << summary.errors.max
-                << ", normalized max (Eq. 38) " << summary.errors.max_normalized
-                << std::defaultfloat << std::endl;
+          ctx.pcout << "           error against the analytical solution: "
+                    << "relative L2 " << std::scientific << std::setprecision(3)
+                    << ctx.summary.errors.l2 << ", relative max "
+                    << ctx.summary.errors.max << ", normalized max (Eq. 38) "
+                    << ctx.summary.errors.max_normalized << std::defaultfloat
+                    << std::endl;
         }
 
-      TimerOutput::Scope scope(timer, "output");
+      TimerOutput::Scope scope(ctx.timer, "output");
       const std::string  record =
-        output.write(dof_handler, nodes, displacement, fields);
+        ctx.output.write(ctx.dof_handler, ctx.nodes, displacement, fields);
       if (!record.empty())
-        pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-              << simulator.elapsed() << " s] wrote " << output.directory()
-              << "/" << record << std::defaultfloat << std::endl;
+        ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                  << simulator.elapsed() << " s] wrote "
+                  << ctx.output.directory() << "/" << record
+                  << std::defaultfloat << std::endl;
     }
 
 
@@ -768,29 +734,13 @@ namespace PeriDEAL
     QuasiStatic<dim>::write_node_data(Simulator<dim>       &simulator,
                                       const Tensor<1, dim> &component_max) const
     {
-      [[maybe_unused]] const auto [communicator,
-                                   pcout,
-                                   timer,
-                                   summary,
-                                   dof_handler,
-                                   triangulation,
-                                   nodes,
-                                   neighbor_lists,
-                                   model,
-                                   horizon,
-                                   boundary_conditions,
-                                   treatment,
-                                   treatment_name,
-                                   linear_solver,
-                                   analytical_solution,
-                                   output,
-                                   node_data_file] = context_of(simulator);
+      const auto ctx = context_of(simulator);
       // Rows: kind (0 body, 1 surface), x, u, exact, normalized error.
       std::vector<double> rows;
       Vector<double>      exact(dim);
       const auto          add =
         [&](const int kind, const Point<dim> &x, const Tensor<1, dim> &u) {
-          analytical_solution->vector_value(x, exact);
+          ctx.analytical_solution->vector_value(x, exact);
           rows.push_back(kind);
           double n2 = 0;
           for (unsigned int c = 0; c < dim; ++c)
@@ -805,25 +755,26 @@ namespace PeriDEAL
             }
           rows.push_back(std::sqrt(n2));
         };
-      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+      for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
         {
           Tensor<1, dim> u;
           for (unsigned int c = 0; c < dim; ++c)
-            u[c] = displacement[nodes[i].dofs[c]];
-          add(0, nodes[i].location, u);
+            u[c] = displacement[ctx.nodes[i].dofs[c]];
+          add(0, ctx.nodes[i].location, u);
         }
-      if (treatment.uses_fictitious_layer() && treatment.uses_surface_nodes())
+      if (ctx.treatment.uses_fictitious_layer() &&
+          ctx.treatment.uses_surface_nodes())
         {
           const auto &surface = layer_operator.owned_surface_nodes();
           for (unsigned int k = 0; k < surface.size(); ++k)
             add(1, surface[k].location, surface_displacement[k]);
         }
-      const auto all = Utilities::MPI::gather(communicator, rows, 0);
+      const auto all = Utilities::MPI::gather(ctx.communicator, rows, 0);
       // Written by process 0 under a temporary name; the verdict is shared
       // so that a failure there does not leave the others waiting.
       std::string error;
-      if (Utilities::MPI::this_mpi_process(communicator) == 0)
-        error = write_then_rename(node_data_file, [&](std::ostream &out) {
+      if (Utilities::MPI::this_mpi_process(ctx.communicator) == 0)
+        error = write_then_rename(ctx.node_data_file, [&](std::ostream &out) {
           const char *const names[] = {"x", "y", "z"};
           out << "kind";
           for (unsigned int c = 0; c < dim; ++c)
@@ -845,10 +796,10 @@ namespace PeriDEAL
         });
       throw_on_any_rank(error.empty() ?
                           error :
-                          "Invalid value '" + node_data_file +
+                          "Invalid value '" + ctx.node_data_file +
                             "' for the parameter 'Output/Node data file': " +
                             error + ".",
-                        communicator);
+                        ctx.communicator);
     }
 
 

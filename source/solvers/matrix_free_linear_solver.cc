@@ -100,18 +100,21 @@ namespace PeriDEAL
                              "Raise the m-ratio or check the mesh."));
 
       SolverControl control(max_iterations, tolerance * rhs_norm);
+      const auto    krylov = [&](const auto &precondition) {
+        run_krylov(method_name,
+                   restart_length,
+                   control,
+                   op,
+                   solution,
+                   rhs,
+                   precondition);
+      };
       try
         {
           if (preconditioner == "Jacobi")
             {
               DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
-              run_krylov(method_name,
-                         restart_length,
-                         control,
-                         op,
-                         solution,
-                         rhs,
-                         jacobi);
+              krylov(jacobi);
             }
           else if (preconditioner == "Chebyshev")
             {
@@ -127,13 +130,7 @@ namespace PeriDEAL
                 std::make_shared<DiagonalMatrix<VectorType>>(inverse_diagonal);
               Chebyshev chebyshev;
               chebyshev.initialize(op, data);
-              run_krylov(method_name,
-                         restart_length,
-                         control,
-                         op,
-                         solution,
-                         rhs,
-                         chebyshev);
+              krylov(chebyshev);
             }
           else if (preconditioner == "local elasticity")
             {
@@ -145,22 +142,10 @@ namespace PeriDEAL
               data.aggregation_threshold = aggregation;
               TrilinosWrappers::PreconditionAMG amg;
               amg.initialize(*local_matrix, data);
-              run_krylov(method_name,
-                         restart_length,
-                         control,
-                         op,
-                         solution,
-                         rhs,
-                         amg);
+              krylov(amg);
             }
           else
-            run_krylov(method_name,
-                       restart_length,
-                       control,
-                       op,
-                       solution,
-                       rhs,
-                       PreconditionIdentity());
+            krylov(PreconditionIdentity());
         }
       catch (const SolverControl::NoConvergence &e)
         {

@@ -71,6 +71,11 @@ namespace PeriDEAL
       void
       solve_matrix_free(Simulator<dim> &simulator);
 
+      /// The Dirichlet constraints (with the rigid-motion check) and the
+      /// load vector of the layer-free paths.
+      void
+      make_constraints_and_load(Simulator<dim> &simulator);
+
       void
       postprocess(Simulator<dim> &simulator);
 
