@@ -121,28 +121,18 @@ namespace PeriDEAL
         setup_layer_operator(simulator);
       else
         {
-          const bool matrix_free =
-            simulator.get_linear_solver().is_matrix_free();
-          // The matrix-free operator evaluates full neighbourhoods with the
-          // shared stencil: their lists need not be stored.
-          simulator.setup_neighbor_lists(!matrix_free);
+          // Both operators evaluate full neighbourhoods with the shared
+          // stencil: their lists need not be stored.
+          simulator.setup_neighbor_lists(false);
           TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
           const auto        &nodes = simulator.get_nodes();
           const auto        &lists = simulator.get_neighbor_lists();
-          if (matrix_free)
-            {
-              bond_state.reinit(nodes, lists);
-              bond_operator.reinit(nodes,
-                                   lists,
-                                   simulator.get_model(),
-                                   simulator.get_horizon(),
-                                   &bond_state);
-            }
-          else
-            pd_operator.reinit(nodes,
+          bond_state.reinit(nodes, lists);
+          bond_operator.reinit(nodes,
                                lists,
                                simulator.get_model(),
-                               simulator.get_horizon());
+                               simulator.get_horizon(),
+                               &bond_state);
         }
       assemble_and_solve(simulator);
       postprocess(simulator);
@@ -509,7 +499,7 @@ namespace PeriDEAL
         TimerOutput::Scope scope(ctx.timer, "assembly");
         make_constraints_and_load(simulator);
         system_rhs = load;
-        pd_operator.assemble(system_matrix, constraints, system_rhs);
+        bond_operator.assemble(system_matrix, &constraints, &system_rhs);
       }
       ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
         ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
@@ -565,8 +555,14 @@ namespace PeriDEAL
 
       // Equilibrium with the matrix-free forces: F_int(u) + F_ext = 0 at
       // every free DoF.
-      TrilinosWrappers::MPI::Vector internal(owned, ctx.communicator);
-      pd_operator.apply(displacement, internal);
+      // (The apply() loops of BondOperator, not its assembly.)
+      LinearAlgebra::distributed::Vector<double> u, internal;
+      bond_operator.initialize_dof_vector(u);
+      bond_operator.initialize_dof_vector(internal);
+      for (const auto dof : owned)
+        u[dof] = displacement[dof];
+      u.update_ghost_values();
+      bond_operator.apply(u, internal);
       double free_residual2 = 0;
       for (const auto dof : owned)
         if (!constraints.is_constrained(dof))
@@ -606,22 +602,14 @@ namespace PeriDEAL
       if (!layer)
         {
           // Quantities of the operator without a layer.
-          std::vector<double> dilatation;
-          const bool          matrix_free = ctx.linear_solver.is_matrix_free();
-          if (matrix_free)
-            {
-              LinearAlgebra::distributed::Vector<double> u;
-              bond_operator.initialize_dof_vector(u);
-              for (const auto dof : ctx.dof_handler.locally_owned_dofs())
-                u[dof] = displacement[dof];
-              u.update_ghost_values();
-              bond_operator.compute_dilatation(u, dilatation);
-            }
-          else
-            pd_operator.compute_dilatation(displacement, dilatation);
-          const auto   &weighted_volumes = matrix_free ?
-                                             bond_operator.weighted_volumes() :
-                                             pd_operator.weighted_volumes();
+          std::vector<double>                        dilatation;
+          LinearAlgebra::distributed::Vector<double> u;
+          bond_operator.initialize_dof_vector(u);
+          for (const auto dof : ctx.dof_handler.locally_owned_dofs())
+            u[dof] = displacement[dof];
+          u.update_ghost_values();
+          bond_operator.compute_dilatation(u, dilatation);
+          const auto &weighted_volumes = bond_operator.weighted_volumes();
           IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
             neighbours{"n_neighbors", {}};
           for (unsigned int i = 0; i < n_owned; ++i)

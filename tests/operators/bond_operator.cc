@@ -6,7 +6,11 @@
 //  - K u = -F(u) for a smooth non-linear field, to 1e-12 relative;
 //  - the exact diagonal of K (compute_diagonal) against the matrix, 1e-12;
 //  - 1 and 2 threads give bitwise identical forces;
-//  - neighbour lists stored for the bulk or not give the same forces.
+//  - neighbour lists stored for the bulk or not give the same forces;
+//  - BondOperator::assemble() (stencil-based rows, own graph) against the
+//    reference matrix entry by entry, 1e-12 of the largest entry, without
+//    and with prescribed values (matrix and right-hand side), and the same
+//    values on 1 and 2 threads.
 // Kind of test: comparison of two implementations of the same operator.
 // The node counts printed do not depend on the number of MPI ranks.
 
@@ -22,6 +26,8 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/lac/affine_constraints.h>
 
 #include <perideal/discretization/bond_state.h>
 #include <perideal/discretization/neighbor_list.h>
@@ -147,6 +153,75 @@ check(const std::string &name,
   stored_diff = Utilities::MPI::max(stored_diff, comm) /
                 Utilities::MPI::max(force.linfty_norm(), comm);
 
+  // The assembled stiffness of BondOperator against the reference, entry
+  // by entry (every entry of either matrix), without and with prescribed
+  // values: nodes with x < 1.5 fully, component 1 of nodes with x > n - 1.5.
+  const auto entry_difference = [&](const TrilinosWrappers::SparseMatrix &a,
+                                    const TrilinosWrappers::SparseMatrix &b) {
+    double difference = 0, largest = 0;
+    for (const auto row : owned)
+      {
+        for (auto e = a.begin(row); e != a.end(row); ++e)
+          {
+            difference = std::max(difference,
+                                  std::abs(e->value() - b.el(row, e->column())));
+            largest    = std::max(largest, std::abs(e->value()));
+          }
+        for (auto e = b.begin(row); e != b.end(row); ++e)
+          difference = std::max(difference,
+                                std::abs(e->value() - a.el(row, e->column())));
+      }
+    return Utilities::MPI::max(difference, comm) /
+           Utilities::MPI::max(largest, comm);
+  };
+  MultithreadInfo::set_thread_limit(1);
+  TrilinosWrappers::SparseMatrix assembled, assembled_2;
+  op.assemble(assembled);
+  const double assembly_difference = entry_difference(assembled, matrix);
+
+  AffineConstraints<double> constraints;
+  for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+    for (unsigned int c = 0; c < dim; ++c)
+      if (nodes[i].location[0] < 1.5 ||
+          (c == 1 && nodes[i].location[0] > n_cells - 1.5))
+        {
+          constraints.add_line(nodes[i].dofs[c]);
+          constraints.set_inhomogeneity(nodes[i].dofs[c],
+                                        0.1 * std::sin(nodes[i].location[1] + c));
+        }
+  // Off-process nodes too: their columns move to the right-hand side.
+  for (unsigned int i = nodes.n_owned(); i < nodes.size(); ++i)
+    for (unsigned int c = 0; c < dim; ++c)
+      if (nodes[i].location[0] < 1.5 ||
+          (c == 1 && nodes[i].location[0] > n_cells - 1.5))
+        {
+          constraints.add_line(nodes[i].dofs[c]);
+          constraints.set_inhomogeneity(nodes[i].dofs[c],
+                                        0.1 * std::sin(nodes[i].location[1] + c));
+        }
+  constraints.close();
+  TrilinosWrappers::SparseMatrix reference_constrained, constrained;
+  TrilinosWrappers::MPI::Vector  reference_rhs(owned, comm), rhs(owned, comm);
+  reference.assemble(reference_constrained, constraints, reference_rhs);
+  op.assemble(constrained, &constraints, &rhs);
+  const double constrained_difference =
+    entry_difference(constrained, reference_constrained);
+  TrilinosWrappers::MPI::Vector rhs_difference(rhs);
+  rhs_difference -= reference_rhs;
+  const double rhs_relative =
+    rhs_difference.linfty_norm() / reference_rhs.linfty_norm();
+
+  MultithreadInfo::set_thread_limit(2);
+  op.assemble(assembled_2);
+  bool assembly_identical = assembled.n_nonzero_elements() ==
+                            assembled_2.n_nonzero_elements();
+  for (const auto row : owned)
+    for (auto e = assembled.begin(row); e != assembled.end(row); ++e)
+      assembly_identical = assembly_identical &&
+                           e->value() == assembled_2.el(row, e->column());
+  assembly_identical =
+    Utilities::MPI::min(assembly_identical ? 1 : 0, comm) == 1;
+
   const double relative = std::sqrt(diff2 / norm2);
   std::cout << std::setw(34) << std::left << name << " nodes "
             << tria.n_global_active_cells() << ", on the stencil "
@@ -157,7 +232,20 @@ check(const std::string &name,
             << (diag_diff <= 1e-12 * diag_max ? "yes" : "NO")
             << "\n  1 and 2 threads identical: " << (identical ? "yes" : "NO")
             << "\n  stored bulk lists give the same forces (1e-14): "
-            << (stored_diff <= 1e-14 ? "yes" : "NO") << std::endl;
+            << (stored_diff <= 1e-14 ? "yes" : "NO")
+            << "\n  assembled = reference matrix (1e-12): "
+            << (assembly_difference <= 1e-12 ? "yes" : "NO")
+            << "\n  with prescribed values, matrix and rhs (1e-12): "
+            << (constrained_difference <= 1e-12 && rhs_relative <= 1e-12 ?
+                  "yes" :
+                  "NO")
+            << "\n  assembled on 1 and 2 threads identical: "
+            << (assembly_identical ? "yes" : "NO") << std::endl;
+  if (assembly_difference > 1e-12 || constrained_difference > 1e-12 ||
+      rhs_relative > 1e-12)
+    std::cout << "  (assembly " << assembly_difference << ", constrained "
+              << constrained_difference << ", rhs " << rhs_relative << ")"
+              << std::endl;
   if (relative > 1e-12 || diag_diff > 1e-12 * diag_max)
     std::cout << "  (relative difference " << relative << ", diagonal "
               << diag_diff / diag_max << ")" << std::endl;

@@ -16,6 +16,20 @@
 #include <memory>
 #include <vector>
 
+namespace dealii
+{
+  template <typename number>
+  class AffineConstraints;
+  namespace TrilinosWrappers
+  {
+    class SparseMatrix;
+    namespace MPI
+    {
+      class Vector;
+    }
+  } // namespace TrilinosWrappers
+} // namespace dealii
+
 namespace PeriDEAL
 {
   namespace Operators
@@ -117,6 +131,29 @@ namespace PeriDEAL
       void
       compute_diagonal(VectorType &diagonal) const;
 
+      /**
+       * Assemble the stiffness \f$K = -\partial F/\partial u\f$ of the
+       * owned DoFs into @p matrix (rows, range and domain: the owned DoFs),
+       * from the same kernel, stencil, lists and bond state as apply(), so
+       * that \f$K u = -F(u)\f$ to round-off. With @p constraints (prescribed
+       * values \f$u_k = g_k\f$ only), the columns of prescribed DoFs move to
+       * @p rhs (\f$b_r \mathrel{-}= K_{rk} g_k\f$, i.e. added as
+       * \f$\partial F_r/\partial u_k\, g_k\f$) and their rows keep a
+       * positive diagonal \f$d\f$ with \f$b_k \mathrel{+}= d\, g_k\f$.
+       *
+       * The pattern of a row is exactly its intact coupling (neighbours and,
+       * state-based, their neighbours) minus prescribed columns; it is built
+       * once into a Trilinos graph with exact row lengths (no second copy of
+       * the pattern). On a uniform grid, rows whose whole coupling range is
+       * the shared stencil (bulk rows) copy one precomputed block row; the
+       * others are formed in a dense scratch box around the node. Values are
+       * written in place into the matrix's rows, threaded.
+       */
+      void
+      assemble(TrilinosWrappers::SparseMatrix  &matrix,
+               const AffineConstraints<double> *constraints = nullptr,
+               TrilinosWrappers::MPI::Vector   *rhs         = nullptr) const;
+
       /// Reference weighted volume \f$m_i\f$ of every node with a list.
       const std::vector<double> &
       weighted_volumes() const;
@@ -213,6 +250,20 @@ namespace PeriDEAL
       template <typename Function>
       void
       for_each_intact_bond(const unsigned int i, const Function &f) const;
+
+      /**
+       * Call f(j, key, n, g, a, b) for every intact bond of node i (which
+       * must have a list in the work lists or be on the stencil), with the
+       * bond's constants as apply() uses them. On the lattice, key is
+       * @p base plus the box-index offset of the bond's stencil entry
+       * (@p box_delta); off the lattice it is the neighbour j.
+       */
+      template <typename Function>
+      void
+      for_each_bond_constants(const unsigned int              i,
+                              const std::ptrdiff_t            base,
+                              const std::vector<std::ptrdiff_t> &box_delta,
+                              const Function                 &f) const;
 
       void
       build_work_lists();

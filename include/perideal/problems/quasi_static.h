@@ -30,8 +30,9 @@ namespace PeriDEAL
      *   stencil in the uniform bulk, no matrix) with prescribed DoFs
      *   eliminated, and a Krylov method preconditioned by Jacobi, Chebyshev
      *   or AMG on the local elasticity operator;
-     * - `assembled`: the Trilinos stiffness of LinearPeridynamicOperator,
-     *   solved directly or by a preconditioned Krylov method;
+     * - `assembled`: the Trilinos stiffness assembled by the same
+     *   BondOperator (BondOperator::assemble()), solved directly or by a
+     *   preconditioned Krylov method;
      * - with the `fictitious layer` or `surface nodes` boundary treatment:
      *   the FictitiousLayerOperator's assembled system (Scabbia et al.
      *   2023).
@@ -90,7 +91,6 @@ namespace PeriDEAL
       write_node_data(Simulator<dim>       &simulator,
                       const Tensor<1, dim> &component_max) const;
 
-      Operators::LinearPeridynamicOperator<dim> pd_operator;
       Operators::FictitiousLayerOperator<dim>   layer_operator;
       Discretization::BondState<dim>            bond_state;
       Operators::BondOperator<dim>              bond_operator;
