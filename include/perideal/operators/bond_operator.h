@@ -252,18 +252,23 @@ namespace PeriDEAL
       for_each_intact_bond(const unsigned int i, const Function &f) const;
 
       /**
-       * Call f(j, key, n, g, a, b) for every intact bond of node i (which
-       * must have a list in the work lists or be on the stencil), with the
-       * bond's constants as apply() uses them. On the lattice, key is
-       * @p base plus the box-index offset of the bond's stencil entry
-       * (@p box_delta); off the lattice it is the neighbour j.
+       * Call f(slot_j, key, n, g, a, b) for every intact bond of node i
+       * (which must be on the stencil or have a list in the work lists),
+       * with the neighbour's slot and the bond's constants as apply() uses
+       * them. On the lattice, key is @p base plus the box-index offset of
+       * the bond's stencil entry (@p box_delta); off it, the neighbour's
+       * node index (= its slot).
        */
       template <typename Function>
       void
-      for_each_bond_constants(const unsigned int              i,
-                              const std::ptrdiff_t            base,
+      for_each_bond_constants(const unsigned int                 i,
+                              const std::ptrdiff_t               base,
                               const std::vector<std::ptrdiff_t> &box_delta,
-                              const Function                 &f) const;
+                              const Function                    &f) const;
+
+      /// The node in slot @p s.
+      unsigned int
+      node_of_slot(const std::size_t s) const;
 
       void
       build_work_lists();
