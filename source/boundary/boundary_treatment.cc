@@ -1,4 +1,7 @@
 #include <perideal/boundary/boundary_treatment.h>
+#include <perideal/boundary/layer_system.h>
+#include <perideal/boundary/nodal_system.h>
+#include <perideal/problems/simulator.h>
 
 namespace PeriDEAL
 {
@@ -18,22 +21,22 @@ namespace PeriDEAL
         parse_parameters(ParameterHandler &) override
         {}
 
-        bool
-        uses_fictitious_layer() const override
-        {
-          return false;
-        }
-
-        bool
-        uses_surface_nodes() const override
-        {
-          return false;
-        }
-
         unsigned int
         taylor_order() const override
         {
           return 0;
+        }
+
+        std::unique_ptr<DiscreteSystem<2>>
+        make_system(const Problems::Simulator<2> &) const override
+        {
+          return std::make_unique<NodalSystem<2>>();
+        }
+
+        std::unique_ptr<DiscreteSystem<3>>
+        make_system(const Problems::Simulator<3> &) const override
+        {
+          return std::make_unique<NodalSystem<3>>();
         }
       };
 
@@ -61,22 +64,36 @@ namespace PeriDEAL
           order = prm.get_integer("Taylor order");
         }
 
-        bool
-        uses_fictitious_layer() const override
-        {
-          return true;
-        }
-
-        bool
-        uses_surface_nodes() const override
-        {
-          return false;
-        }
-
         unsigned int
         taylor_order() const override
         {
           return order;
+        }
+
+        std::unique_ptr<DiscreteSystem<2>>
+        make_system(const Problems::Simulator<2> &simulator) const override
+        {
+          return std::make_unique<LayerSystem<2>>(
+            simulator.get_boundary_treatment_name(),
+            with_surface_nodes(),
+            order);
+        }
+
+        std::unique_ptr<DiscreteSystem<3>>
+        make_system(const Problems::Simulator<3> &simulator) const override
+        {
+          return std::make_unique<LayerSystem<3>>(
+            simulator.get_boundary_treatment_name(),
+            with_surface_nodes(),
+            order);
+        }
+
+      protected:
+        /// Whether surface nodes carry the boundary conditions.
+        virtual bool
+        with_surface_nodes() const
+        {
+          return false;
         }
 
       private:
@@ -87,9 +104,9 @@ namespace PeriDEAL
       /// Fictitious layer plus surface nodes with force-flux equations.
       class SurfaceNodes : public FictitiousLayer
       {
-      public:
+      protected:
         bool
-        uses_surface_nodes() const override
+        with_surface_nodes() const override
         {
           return true;
         }

@@ -5,13 +5,23 @@
 
 #include <perideal/base/plugin_registry.h>
 
+#include <memory>
 #include <string>
 
 namespace PeriDEAL
 {
+  namespace Problems
+  {
+    template <int dim>
+    class Simulator;
+  }
+
   namespace Boundary
   {
     using namespace dealii;
+
+    template <int dim>
+    class DiscreteSystem;
 
     /**
      * How the surface of a peridynamic body is treated (Scabbia, Zaccariotto
@@ -36,7 +46,9 @@ namespace PeriDEAL
      *   their equations.
      *
      * The classes are chosen by name in the input file through
-     * BoundaryTreatmentRegistry.
+     * BoundaryTreatmentRegistry. Each builds the DiscreteSystem that the
+     * problem type drives (make_system()): the problem type never branches
+     * on the treatment.
      */
     class BoundaryTreatment
     {
@@ -47,20 +59,21 @@ namespace PeriDEAL
       virtual void
       parse_parameters(ParameterHandler &prm) = 0;
 
-      /// Whether fictitious nodes complete the neighbourhoods.
-      virtual bool
-      uses_fictitious_layer() const = 0;
-
-      /// Whether surface nodes carry the boundary conditions.
-      virtual bool
-      uses_surface_nodes() const = 0;
-
       /**
        * Truncation order N of the Taylor extrapolation of displacements
-       * (dilatations use N-1); zero without a fictitious layer.
+       * (dilatations use N-1); zero without a fictitious layer. For the
+       * run summary.
        */
       virtual unsigned int
       taylor_order() const = 0;
+
+      /// The discrete system of a 2D body with this treatment.
+      virtual std::unique_ptr<DiscreteSystem<2>>
+      make_system(const Problems::Simulator<2> &simulator) const = 0;
+
+      /// The discrete system of a 3D body with this treatment.
+      virtual std::unique_ptr<DiscreteSystem<3>>
+      make_system(const Problems::Simulator<3> &simulator) const = 0;
 
       /// The family's name in error messages.
       static std::string

@@ -1,0 +1,287 @@
+#include <deal.II/base/mpi.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/boundary/layer_system.h>
+#include <perideal/problems/simulator_context.h>
+
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Boundary
+  {
+    template <int dim>
+    LayerSystem<dim>::LayerSystem(const std::string &treatment_name,
+                                  const bool         with_surface_nodes,
+                                  const unsigned int taylor_order)
+      : treatment_name(treatment_name)
+      , with_surface_nodes(with_surface_nodes)
+      , taylor_order(taylor_order)
+    {}
+
+
+    template <int dim>
+    void
+    LayerSystem<dim>::check_input(
+      const Problems::Simulator<dim> &simulator) const
+    {
+      AssertThrow(!simulator.get_linear_solver().is_matrix_free(),
+                  ExcInvalidInput(
+                    "Linear solver/Operator",
+                    "matrix-free",
+                    "the boundary treatment '" + treatment_name +
+                      "' is available with 'Operator = assembled' only so "
+                      "far; set it, or use 'Boundary treatment/Treatment = "
+                      "none'"));
+    }
+
+
+    template <int dim>
+    bool
+    LayerSystem<dim>::is_constrained(const Discretization::Node<dim> &node) const
+    {
+      // With surface nodes the conditions act on the surface nodes.
+      if (with_surface_nodes)
+        return false;
+      for (const auto dof : node.dofs)
+        if (constraints.is_constrained(dof))
+          return true;
+      return false;
+    }
+
+
+    template <int dim>
+    std::vector<typename DiscreteSystem<dim>::ExtraNode>
+    LayerSystem<dim>::extra_nodes() const
+    {
+      std::vector<typename DiscreteSystem<dim>::ExtraNode> extra;
+      const auto &surface = layer_operator.owned_surface_nodes();
+      for (unsigned int k = 0; k < surface_displacement.size(); ++k)
+        extra.push_back({surface[k].location, surface_displacement[k]});
+      return extra;
+    }
+
+
+    template <int dim>
+    std::string
+    LayerSystem<dim>::extra_nodes_name() const
+    {
+      return with_surface_nodes ? "surface nodes" : "";
+    }
+
+
+    template <int dim>
+    void
+    LayerSystem<dim>::setup(Problems::Simulator<dim> &simulator)
+    {
+      auto       &summary   = simulator.get_summary();
+      {
+        TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
+        layer_operator.reinit(simulator.get_dof_handler(),
+                              simulator.get_nodes(),
+                              simulator.get_model(),
+                              simulator.get_horizon(),
+                              simulator.get_partial_volume(),
+                              with_surface_nodes,
+                              taylor_order);
+      }
+      summary.n_bonds =
+        summary.n_nodes * layer_operator.n_neighbours_per_node();
+      summary.n_surface_nodes    = layer_operator.n_surface_nodes();
+      summary.n_fictitious_nodes = layer_operator.n_fictitious_nodes();
+      std::ostringstream line;
+      line << "nodes: " << summary.n_nodes << " in the body, "
+           << summary.n_fictitious_nodes << " fictitious, "
+           << summary.n_surface_nodes << " surface nodes; "
+           << layer_operator.n_neighbours_per_node()
+           << " bonds per node, weights by '"
+           << simulator.get_partial_volume_name() << "'; boundary treatment '"
+           << simulator.get_boundary_treatment_name() << "', Taylor order "
+           << taylor_order;
+      simulator.print_progress(line.str());
+    }
+
+
+    template <int dim>
+    void
+    LayerSystem<dim>::solve_linear(
+      Problems::Simulator<dim>      &simulator,
+      TrilinosWrappers::MPI::Vector &displacement)
+    {
+      const auto      ctx        = Problems::internal::context_of(simulator);
+      const IndexSet &owned_dofs = ctx.dof_handler.locally_owned_dofs();
+      const IndexSet &owned      = layer_operator.owned_unknowns();
+      std::map<types::global_dof_index, double> prescribed;
+      {
+        TimerOutput::Scope scope(ctx.timer, "assembly");
+        system_rhs.reinit(owned, ctx.communicator);
+        ctx.boundary_conditions.check_boundary_ids(ctx.triangulation);
+        if (with_surface_nodes)
+          {
+            // Body force on the body ctx.nodes, boundary conditions on the
+            // surface ctx.nodes: Dirichlet values where prescribed, the
+            // traction times the face area in the force-flux equation
+            // otherwise.
+            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+              {
+                const Tensor<1, dim> b =
+                  ctx.boundary_conditions.body_force_value(
+                    ctx.nodes[i].location);
+                for (unsigned int c = 0; c < dim; ++c)
+                  system_rhs[layer_operator.unknown_index(ctx.nodes[i], c)] =
+                    ctx.nodes[i].volume() * b[c];
+              }
+            const auto &mask =
+              ctx.boundary_conditions.dirichlet_component_mask();
+            for (const auto &node : layer_operator.owned_surface_nodes())
+              {
+                const bool dirichlet =
+                  ctx.boundary_conditions.is_dirichlet_boundary(
+                    node.boundary_id);
+                const Tensor<1, dim> g =
+                  dirichlet ?
+                    ctx.boundary_conditions.dirichlet_value(node.location) :
+                    Tensor<1, dim>();
+                const Tensor<1, dim> p =
+                  ctx.boundary_conditions.is_traction_boundary(
+                    node.boundary_id) ?
+                    ctx.boundary_conditions.traction_value(node.location,
+                                                           node.normal()) :
+                    Tensor<1, dim>();
+                for (unsigned int c = 0; c < dim; ++c)
+                  if (dirichlet && mask[c])
+                    prescribed[node.first_unknown + c] = g[c];
+                  else
+                    system_rhs[node.first_unknown + c] = node.area * p[c];
+              }
+            ctx.summary.n_constrained_nodes =
+              Utilities::MPI::sum(static_cast<unsigned int>(prescribed.size()),
+                                  ctx.communicator);
+          }
+        else
+          {
+            // A completed neighbourhood makes every node a bulk node: a
+            // homogeneous strain then costs nothing anywhere, and a free or
+            // loaded face has no equation that could hold it. Only bodies
+            // whose every face is fully prescribed are well posed.
+            bool all_prescribed = true;
+            for (const bool c :
+                 ctx.boundary_conditions.dirichlet_component_mask())
+              all_prescribed = all_prescribed && c;
+            for (const auto &cell : ctx.triangulation.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->at_boundary(f) &&
+                      !ctx.boundary_conditions.is_dirichlet_boundary(
+                        cell->face(f)->boundary_id()))
+                    all_prescribed = false;
+            AssertThrow(
+              Utilities::MPI::min(all_prescribed ? 1 : 0, ctx.communicator) ==
+                1,
+              ExcInvalidInput(
+                "Boundary treatment/Treatment",
+                ctx.treatment_name,
+                "a fictitious layer alone cannot carry free or loaded faces "
+                "(with completed neighbourhoods homogeneous strains cost no "
+                "energy, so the system is singular): list every boundary id "
+                "under 'Dirichlet boundary ids' with all components, or use "
+                "'surface nodes', whose force-flux equations carry "
+                "tractions and free faces"));
+            // Conditions as without ctx.treatment: Dirichlet layers. The
+            // unknowns are the DoFs.
+            ctx.boundary_conditions.make_constraints(ctx.dof_handler,
+                                                     ctx.nodes,
+                                                     ctx.horizon,
+                                                     constraints);
+            load.reinit(owned_dofs, ctx.communicator);
+            ctx.boundary_conditions.add_load(ctx.dof_handler,
+                                             ctx.nodes,
+                                             constraints,
+                                             load);
+            for (const auto dof : owned_dofs)
+              if (constraints.is_constrained(dof))
+                prescribed[dof] = constraints.get_inhomogeneity(dof);
+              else
+                system_rhs[dof] = load[dof];
+            ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
+              ctx.boundary_conditions.n_constrained_nodes(ctx.nodes,
+                                                          constraints),
+              ctx.communicator);
+          }
+        system_rhs.compress(VectorOperation::insert);
+        layer_operator.assemble(prescribed, system_matrix, system_rhs);
+      }
+      ctx.summary.n_unknowns = owned.size();
+      ctx.summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed()
+                << " s] assembled: " << ctx.summary.n_unknowns << " unknowns, "
+                << ctx.summary.n_nonzeros << " nonzeros, "
+                << ctx.summary.n_constrained_nodes
+                << (with_surface_nodes ?
+                      " prescribed surface-node components" :
+                      " nodes in Dirichlet layers")
+                << " (non-symmetric)" << std::endl;
+
+      TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
+      {
+        TimerOutput::Scope scope(ctx.timer, "solve");
+        // Rigid translations for AMG: the component of each unknown.
+        std::vector<std::vector<bool>> constant_modes(
+          dim,
+          std::vector<bool>(owned.n_elements(), false));
+        for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            constant_modes[c][owned.index_within_set(
+              layer_operator.unknown_index(ctx.nodes[i], c))] = true;
+        for (const auto &node : layer_operator.owned_surface_nodes())
+          for (unsigned int c = 0; c < dim; ++c)
+            constant_modes[c][owned.index_within_set(node.first_unknown + c)] =
+              true;
+        ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
+                                                     solution,
+                                                     system_rhs,
+                                                     constant_modes,
+                                                     false);
+      }
+      Problems::internal::print_solve(simulator, "");
+      // Equilibrium of the assembled system (with a layer there is no
+      // separate matrix-free form): |K u - f| / |K u| over the free rows.
+      {
+        TrilinosWrappers::MPI::Vector ku(owned, ctx.communicator);
+        system_matrix.vmult(ku, solution);
+        const double scale = ku.l2_norm();
+        ku -= system_rhs;
+        ctx.summary.equilibrium_residual =
+          scale > 0 ? ku.l2_norm() / scale : 0.;
+      }
+      Problems::internal::print_equilibrium(simulator, "assembled system");
+
+      // Body displacements back to the DoF numbering, surface ones aside.
+      TrilinosWrappers::MPI::Vector body(owned_dofs, ctx.communicator);
+      for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          body[ctx.nodes[i].dofs[c]] =
+            solution[layer_operator.unknown_index(ctx.nodes[i], c)];
+      body.compress(VectorOperation::insert);
+      displacement.reinit(owned_dofs,
+                          ctx.nodes.relevant_dofs(),
+                          ctx.communicator);
+      displacement = body;
+      surface_displacement.clear();
+      for (const auto &node : layer_operator.owned_surface_nodes())
+        {
+          Tensor<1, dim> u;
+          for (unsigned int c = 0; c < dim; ++c)
+            u[c] = solution[node.first_unknown + c];
+          surface_displacement.push_back(u);
+        }
+    }
+
+
+    template class LayerSystem<2>;
+    template class LayerSystem<3>;
+  } // namespace Boundary
+} // namespace PeriDEAL

@@ -1,0 +1,378 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <perideal/boundary/nodal_system.h>
+#include <perideal/operators/local_elasticity_operator.h>
+#include <perideal/problems/simulator_context.h>
+
+#include <iomanip>
+#include <limits>
+
+namespace PeriDEAL
+{
+  namespace Boundary
+  {
+    template <int dim>
+    void
+    NodalSystem<dim>::setup(Problems::Simulator<dim> &simulator)
+    {
+      // Both operator paths evaluate full neighbourhoods with the shared
+      // stencil: their lists need not be stored.
+      simulator.setup_neighbor_lists(false);
+      TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
+      const auto        &nodes = simulator.get_nodes();
+      const auto        &lists = simulator.get_neighbor_lists();
+      bond_state.reinit(nodes, lists);
+      bond_operator.reinit(nodes,
+                           lists,
+                           simulator.get_model(),
+                           simulator.get_horizon(),
+                           &bond_state);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::solve_linear(Problems::Simulator<dim>      &simulator,
+                                   TrilinosWrappers::MPI::Vector &displacement)
+    {
+      if (simulator.get_linear_solver().is_matrix_free())
+        solve_matrix_free(simulator, displacement);
+      else
+        solve_assembled(simulator, displacement);
+    }
+
+
+    template <int dim>
+    std::vector<IO::NodeField>
+    NodalSystem<dim>::node_fields(
+      const Problems::Simulator<dim>      &simulator,
+      const TrilinosWrappers::MPI::Vector &displacement) const
+    {
+      const auto         &nodes = simulator.get_nodes();
+      std::vector<double> dilatation;
+      VectorType          u;
+      bond_operator.initialize_dof_vector(u);
+      for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
+        u[dof] = displacement[dof];
+      u.update_ghost_values();
+      bond_operator.compute_dilatation(u, dilatation);
+      const auto   &weighted_volumes = bond_operator.weighted_volumes();
+      IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
+        neighbours{"n_neighbors", {}};
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          theta.values.push_back(dilatation[i]);
+          m.values.push_back(weighted_volumes[i]);
+          neighbours.values.push_back(
+            simulator.get_neighbor_lists().n_bonds(i));
+        }
+      return {theta, m, neighbours};
+    }
+
+
+    template <int dim>
+    bool
+    NodalSystem<dim>::is_constrained(const Discretization::Node<dim> &node) const
+    {
+      for (const auto dof : node.dofs)
+        if (constraints.is_constrained(dof))
+          return true;
+      return false;
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::make_constraints_and_load(Problems::Simulator<dim> &simulator)
+    {
+      const auto ctx = Problems::internal::context_of(simulator);
+      ctx.boundary_conditions.make_constraints(ctx.dof_handler,
+                                               ctx.nodes,
+                                               ctx.horizon,
+                                               constraints);
+      check_rigid_motions(simulator);
+      load.reinit(ctx.dof_handler.locally_owned_dofs(), ctx.communicator);
+      ctx.boundary_conditions.add_load(ctx.dof_handler,
+                                       ctx.nodes,
+                                       constraints,
+                                       load);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::solve_matrix_free(
+      Problems::Simulator<dim>      &simulator,
+      TrilinosWrappers::MPI::Vector &displacement)
+    {
+      const auto ctx         = Problems::internal::context_of(simulator);
+      using VectorType       = LinearAlgebra::distributed::Vector<double>;
+      ctx.summary.n_unknowns = ctx.dof_handler.n_dofs();
+      const IndexSet &owned  = ctx.dof_handler.locally_owned_dofs();
+      VectorType      load_vector, rhs, prescribed, solution;
+      {
+        TimerOutput::Scope scope(ctx.timer, "assembly");
+        make_constraints_and_load(simulator);
+        constrained_operator.initialize(bond_operator, constraints);
+        constrained_operator.initialize_dof_vector(load_vector);
+        for (const auto dof : owned)
+          load_vector[dof] = load[dof];
+        constrained_operator.lift(load_vector, rhs, prescribed);
+      }
+      ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
+        ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
+        ctx.communicator);
+      const unsigned int n_stencil =
+        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), ctx.communicator);
+      const std::size_t visits =
+        Utilities::MPI::sum(bond_operator.n_bond_visits(), ctx.communicator);
+      const double operator_mb =
+        Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
+                            ctx.communicator);
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed()
+                << " s] matrix-free operator: " << ctx.dof_handler.n_dofs()
+                << " DoFs, " << n_stencil << " nodes on the shared stencil, "
+                << ctx.summary.n_nodes - n_stencil << " on lists, "
+                << ctx.summary.n_constrained_nodes
+                << " nodes in Dirichlet layers; " << visits
+                << " bond visits per application, " << std::setprecision(1)
+                << operator_mb << " MB, " << MultithreadInfo::n_threads()
+                << " thread(s) per process" << std::defaultfloat << std::endl;
+
+      std::vector<std::vector<bool>> constant_modes;
+      if (ctx.linear_solver.preconditioner_name() == "local elasticity")
+        {
+          TimerOutput::Scope scope(ctx.timer, "preconditioner setup");
+          Operators::LocalElasticityOperator<dim>::assemble(
+            ctx.nodes,
+            ctx.neighbor_lists.lattice(),
+            ctx.model,
+            constraints,
+            local_matrix);
+          DoFTools::extract_constant_modes(ctx.dof_handler,
+                                           ComponentMask(dim, true),
+                                           constant_modes);
+        }
+      constrained_operator.initialize_dof_vector(solution);
+      {
+        TimerOutput::Scope scope(ctx.timer, "solve");
+        ctx.summary.solver = ctx.linear_solver.solve(constrained_operator,
+                                                     solution,
+                                                     rhs,
+                                                     &local_matrix,
+                                                     constant_modes);
+      }
+      solution += prescribed;
+      TrilinosWrappers::MPI::Vector owned_solution(owned, ctx.communicator);
+      for (const auto dof : owned)
+        owned_solution[dof] = solution[dof];
+      owned_solution.compress(VectorOperation::insert);
+      displacement.reinit(owned, ctx.nodes.relevant_dofs(), ctx.communicator);
+      displacement = owned_solution;
+      Problems::internal::print_solve(simulator, "");
+      check_equilibrium(simulator, displacement);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::solve_assembled(
+      Problems::Simulator<dim>      &simulator,
+      TrilinosWrappers::MPI::Vector &displacement)
+    {
+      const auto ctx = Problems::internal::context_of(simulator);
+      ctx.summary.n_unknowns   = ctx.dof_handler.n_dofs();
+      const IndexSet &owned    = ctx.dof_handler.locally_owned_dofs();
+      const IndexSet  relevant = ctx.nodes.relevant_dofs();
+      {
+        TimerOutput::Scope scope(ctx.timer, "assembly");
+        make_constraints_and_load(simulator);
+        system_rhs = load;
+        bond_operator.assemble(system_matrix, &constraints, &system_rhs);
+      }
+      ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
+        ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
+        ctx.communicator);
+      ctx.summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                << simulator.elapsed()
+                << " s] assembled: " << ctx.dof_handler.n_dofs() << " DoFs, "
+                << ctx.summary.n_nonzeros << " nonzeros, "
+                << ctx.summary.n_constrained_nodes
+                << " nodes in Dirichlet layers" << std::endl;
+
+      // Symmetry of the system, measured: x^T A y against y^T A x.
+      TrilinosWrappers::MPI::Vector x(owned, ctx.communicator),
+        y(owned, ctx.communicator), ax(owned, ctx.communicator),
+        ay(owned, ctx.communicator);
+      for (const auto dof : owned)
+        {
+          x[dof] = std::sin(1.3 * dof + 0.2);
+          y[dof] = std::cos(0.7 * dof + 1.1);
+        }
+      x.compress(VectorOperation::insert);
+      y.compress(VectorOperation::insert);
+      system_matrix.vmult(ax, x);
+      system_matrix.vmult(ay, y);
+      const double asymmetry = std::abs(y * ax - x * ay);
+      const bool   symmetric = asymmetry <= 1e-12 * ax.l2_norm() * y.l2_norm();
+
+      TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
+      {
+        TimerOutput::Scope             scope(ctx.timer, "solve");
+        std::vector<std::vector<bool>> constant_modes;
+        DoFTools::extract_constant_modes(ctx.dof_handler,
+                                         ComponentMask(dim, true),
+                                         constant_modes);
+        ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
+                                                     solution,
+                                                     system_rhs,
+                                                     constant_modes,
+                                                     symmetric);
+        constraints.distribute(solution);
+      }
+      displacement.reinit(owned, relevant, ctx.communicator);
+      displacement = solution;
+      Problems::internal::print_solve(simulator,
+                                      symmetric ? "" : " (non-symmetric)");
+      check_equilibrium(simulator, displacement);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::check_rigid_motions(
+      const Problems::Simulator<dim> &simulator) const
+    {
+      // The rigid motions (translations, rotations about the body's centre
+      // in units of its size) restricted to the prescribed DoFs: the Gram
+      // matrix M^T M adds up over processes, and a (near) null vector is a
+      // rigid motion that no Dirichlet condition holds. A direct solver
+      // would return one of infinitely many solutions without complaint.
+      const auto        &nodes   = simulator.get_nodes();
+      const MPI_Comm     comm    = simulator.get_communicator();
+      constexpr unsigned n_modes = dim * (dim + 1) / 2;
+      Point<dim>         lower, upper;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d] = std::numeric_limits<double>::max();
+          upper[d] = -std::numeric_limits<double>::max();
+        }
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lower[d] = std::min(lower[d], nodes[i].location[d]);
+            upper[d] = std::max(upper[d], nodes[i].location[d]);
+          }
+      double     size = 0;
+      Point<dim> centre;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d]  = Utilities::MPI::min(lower[d], comm);
+          upper[d]  = Utilities::MPI::max(upper[d], comm);
+          centre[d] = 0.5 * (lower[d] + upper[d]);
+          size      = std::max(size, upper[d] - lower[d]);
+        }
+      auto mode = [&](const unsigned int r,
+                      const Point<dim>  &p,
+                      const unsigned int c) -> double {
+        if (r < dim)
+          return r == c ? 1. : 0.;
+        const Tensor<1, dim> x = (p - centre) / size;
+        if constexpr (dim == 2)
+          return c == 0 ? -x[1] : x[0];
+        else
+          {
+            // Rotations about the x, y and z axes.
+            const unsigned int a = r - dim, b = (a + 1) % 3, e = (a + 2) % 3;
+            return c == b ? -x[e] : (c == e ? x[b] : 0.);
+          }
+      };
+      std::vector<double> gram(n_modes * n_modes, 0.);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (constraints.is_constrained(nodes[i].dofs[c]))
+            for (unsigned int p = 0; p < n_modes; ++p)
+              for (unsigned int q = 0; q < n_modes; ++q)
+                gram[p * n_modes + q] +=
+                  mode(p, nodes[i].location, c) * mode(q, nodes[i].location, c);
+      Utilities::MPI::sum(gram, comm, gram);
+      LAPACKFullMatrix<double> matrix(n_modes, n_modes);
+      for (unsigned int p = 0; p < n_modes; ++p)
+        for (unsigned int q = 0; q < n_modes; ++q)
+          matrix(p, q) = gram[p * n_modes + q];
+      Vector<double>     eigenvalues;
+      FullMatrix<double> eigenvectors;
+      matrix.compute_eigenvalues_symmetric(-1.,
+                                           1e300,
+                                           0.,
+                                           eigenvalues,
+                                           eigenvectors);
+      const double largest = eigenvalues.linfty_norm();
+      const char  *axes[]  = {"x", "y", "z"};
+      std::string  free_modes;
+      for (unsigned int k = 0; k < eigenvalues.size(); ++k)
+        if (!(eigenvalues[k] > 1e-10 * largest) || largest == 0)
+          {
+            unsigned int dominant = 0;
+            for (unsigned int p = 1; p < n_modes; ++p)
+              if (std::abs(eigenvectors(p, k)) >
+                  std::abs(eigenvectors(dominant, k)))
+                dominant = p;
+            free_modes += std::string(free_modes.empty() ? "" : ", ") +
+                          (dominant < dim ?
+                             std::string("translation in ") + axes[dominant] :
+                           dim == 2 ? std::string("rotation in the x-y plane") :
+                                      std::string("rotation about ") +
+                                        axes[dominant - dim]);
+          }
+      AssertThrow(
+        free_modes.empty(),
+        ExcInvalidInput(
+          "Boundary conditions/Dirichlet boundary ids",
+          simulator.get_boundary_conditions().dirichlet_ids_string(),
+          "the Dirichlet layers leave a rigid motion free (" + free_modes +
+            "), so the system is singular; prescribe the missing "
+            "components ('Dirichlet components') or more boundaries"));
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::check_equilibrium(
+      Problems::Simulator<dim>            &simulator,
+      const TrilinosWrappers::MPI::Vector &displacement) const
+    {
+      // F_int(u) + F_ext = 0 at every free DoF, with the forces of
+      // BondOperator::apply() (not of its assembly).
+      const auto      ctx   = Problems::internal::context_of(simulator);
+      const IndexSet &owned = ctx.dof_handler.locally_owned_dofs();
+      VectorType      u, internal;
+      bond_operator.initialize_dof_vector(u);
+      bond_operator.initialize_dof_vector(internal);
+      for (const auto dof : owned)
+        u[dof] = displacement[dof];
+      u.update_ghost_values();
+      bond_operator.apply(u, internal);
+      double free_residual2 = 0;
+      for (const auto dof : owned)
+        if (!constraints.is_constrained(dof))
+          free_residual2 += std::pow(internal[dof] + load[dof], 2);
+      const double scale = internal.l2_norm();
+      free_residual2 = Utilities::MPI::sum(free_residual2, ctx.communicator);
+      ctx.summary.equilibrium_residual =
+        scale > 0 ? std::sqrt(free_residual2) / scale : 0.;
+      Problems::internal::print_equilibrium(simulator, "matrix-free forces");
+    }
+
+
+    template class NodalSystem<2>;
+    template class NodalSystem<3>;
+  } // namespace Boundary
+} // namespace PeriDEAL
