@@ -142,6 +142,11 @@ namespace PeriDEAL
       std::vector<double> omega_r, a_r, b2_r, g_r; // per neighbour offset
       std::unordered_map<int, signed char> status_cache;
 
+      // The factors of the operator, K = A E + B X D E, kept by assemble()
+      // for apply() (B, X, D only for state-based models).
+      std::unique_ptr<Epetra_CrsMatrix> e_matrix, a_matrix, d_matrix,
+        x_matrix, b_matrix;
+
 
       int
       key(const std::array<int, dim> &cell) const
@@ -1065,19 +1070,18 @@ namespace PeriDEAL
         }
 
       // The products.
-      const auto e_matrix = make_matrix(e_rows, ext_dofs, s.owned_sys, comm);
-      const auto a_matrix = make_matrix(a_rows, s.owned_sys, ext_dofs, comm);
-      const auto product_extension = multiply(*a_matrix, *e_matrix);
+      s.e_matrix = make_matrix(e_rows, ext_dofs, s.owned_sys, comm);
+      s.a_matrix = make_matrix(a_rows, s.owned_sys, ext_dofs, comm);
+      const auto product_extension = multiply(*s.a_matrix, *s.e_matrix);
       std::unique_ptr<Epetra_CrsMatrix> product_dilatation;
       if (s.state_based)
         {
-          const auto d_matrix = make_matrix(d_rows, body_scalar, ext_dofs, comm);
-          const auto x_matrix =
-            make_matrix(x_rows, ext_scalar, body_scalar, comm);
-          const auto b_matrix = make_matrix(b_rows, s.owned_sys, ext_scalar, comm);
-          const auto de       = multiply(*d_matrix, *e_matrix);
-          const auto xde      = multiply(*x_matrix, *de);
-          product_dilatation = multiply(*b_matrix, *xde);
+          s.d_matrix = make_matrix(d_rows, body_scalar, ext_dofs, comm);
+          s.x_matrix = make_matrix(x_rows, ext_scalar, body_scalar, comm);
+          s.b_matrix = make_matrix(b_rows, s.owned_sys, ext_scalar, comm);
+          const auto de      = multiply(*s.d_matrix, *s.e_matrix);
+          const auto xde     = multiply(*s.x_matrix, *de);
+          product_dilatation = multiply(*s.b_matrix, *xde);
         }
 
       // Elimination of the prescribed unknowns.
@@ -1165,6 +1169,40 @@ namespace PeriDEAL
       result.FillComplete(sys_map, sys_map);
       rhs.compress(VectorOperation::insert);
       matrix.reinit(result, true);
+    }
+
+
+    template <int dim>
+    void
+    FictitiousLayerOperator<dim>::apply(
+      const TrilinosWrappers::MPI::Vector &u,
+      TrilinosWrappers::MPI::Vector       &ku) const
+    {
+      const Impl &s = *impl;
+      AssertThrow(s.e_matrix && s.a_matrix,
+                  ExcMessage("FictitiousLayerOperator::apply() needs the "
+                             "factors that assemble() builds: call assemble() "
+                             "first."));
+      const Epetra_MultiVector &x = u.trilinos_vector();
+      Epetra_MultiVector       &y = ku.trilinos_vector();
+      // Lattice displacements, then bond forces: y = A (E u).
+      Epetra_Vector eu(s.e_matrix->RangeMap());
+      AssertThrow(s.e_matrix->Multiply(false, x, eu) == 0, ExcInternalError());
+      AssertThrow(s.a_matrix->Multiply(false, eu, y) == 0, ExcInternalError());
+      if (s.b_matrix)
+        {
+          // Body dilatations, extrapolated to the lattice: + B (X (D (E u))).
+          Epetra_Vector theta(s.d_matrix->RangeMap()),
+            lattice_theta(s.x_matrix->RangeMap());
+          Epetra_MultiVector by(y.Map(), 1);
+          AssertThrow(s.d_matrix->Multiply(false, eu, theta) == 0,
+                      ExcInternalError());
+          AssertThrow(s.x_matrix->Multiply(false, theta, lattice_theta) == 0,
+                      ExcInternalError());
+          AssertThrow(s.b_matrix->Multiply(false, lattice_theta, by) == 0,
+                      ExcInternalError());
+          y.Update(1., by, 1.);
+        }
     }
 
 

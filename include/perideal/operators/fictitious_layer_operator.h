@@ -157,6 +157,19 @@ namespace PeriDEAL
                TrilinosWrappers::SparseMatrix                  &matrix,
                TrilinosWrappers::MPI::Vector                   &rhs) const;
 
+      /**
+       * \f$K u\f$ for unknowns @p u (owned entries), without the assembled
+       * product and without elimination: the factors of \f$K = A E + B X D
+       * E\f$ applied one after the other (Trilinos fetches off-process
+       * values). This evaluates the same bond forces and extrapolation as
+       * the assembled matrix by another path (no EpetraExt products, no
+       * elimination of prescribed unknowns); the quasi-static layer path
+       * checks equilibrium with it. Needs assemble() called before.
+       */
+      void
+      apply(const TrilinosWrappers::MPI::Vector &u,
+            TrilinosWrappers::MPI::Vector       &ku) const;
+
     private:
       struct Impl;
       std::unique_ptr<Impl> impl;
