@@ -27,6 +27,37 @@ namespace PeriDEAL
   {
     namespace
     {
+      /// The columns of the summary CSV.
+      const std::string summary_header =
+        "dim,model,algorithm,n_ranks,n_nodes,n_constrained_nodes,"
+        "h,horizon,m_ratio,n_bonds,nnz,solver,iterations,"
+        "relative_residual,equilibrium_residual,l2_error,"
+        "max_error,time_mesh,time_nodes,time_neighbors,"
+        "time_operator,time_assembly,time_solve,time_output,"
+        "time_total,peak_memory_mb,treatment,taylor_order,"
+        "n_unknowns,n_surface_nodes,n_fictitious_nodes,"
+        "max_normalized_error,operator,preconditioner,"
+        "time_preconditioner,n_threads,problem_type";
+
+      const std::string summary_columns_differ =
+        "the file exists with other columns (an older version or another "
+        "program wrote it), and a row appended to it would be misread; name "
+        "a new file, or move the old one away.";
+
+      /// Whether @p file exists, is not empty and has other columns.
+      bool
+      summary_columns_mismatch(const std::string &file)
+      {
+        std::ifstream in(file);
+        std::string   first_line;
+        return in && std::getline(in, first_line) &&
+               first_line != summary_header;
+      }
+    } // namespace
+
+
+    namespace
+    {
       template <int dim>
       Point<dim>
       parse_point(const std::string &text)
@@ -729,6 +760,10 @@ namespace PeriDEAL
                   error = "Invalid value '" + file + "' for the parameter '" +
                           entry + "': " + why +
                           "; give a writable file in an existing directory.";
+                else if (entry == "Output/Summary file" &&
+                         summary_columns_mismatch(file))
+                  error = "Invalid value '" + file + "' for the parameter '" +
+                          entry + "': " + summary_columns_differ;
               }
         throw_on_any_rank(error, communicator);
       }
@@ -760,30 +795,37 @@ namespace PeriDEAL
     void
     Simulator<dim>::write_summary_file() const
     {
-      if (!summary_file.empty() &&
-          Utilities::MPI::this_mpi_process(communicator) == 0)
+      if (summary_file.empty())
+        return;
+      // One row per run, appended: the file is rewritten under a temporary
+      // name and renamed, so that a run killed while writing never
+      // truncates the rows of earlier runs. Process 0 writes; its verdict
+      // is shared.
+      const std::string header = summary_header;
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
         {
-          const bool is_new = !std::filesystem::exists(summary_file);
+          std::string earlier;
+          if (std::filesystem::exists(summary_file))
+            {
+              std::ifstream     in(summary_file);
+              std::stringstream content;
+              content << in.rdbuf();
+              earlier = content.str();
+              if (!earlier.empty() &&
+                  earlier.substr(0, earlier.find('\n')) != header)
+                error = "Invalid value '" + summary_file +
+                        "' for the parameter 'Output/Summary file': " +
+                        summary_columns_differ;
+              if (!earlier.empty() && earlier.back() != '\n')
+                earlier += '\n';
+            }
           const std::filesystem::path parent =
             std::filesystem::path(summary_file).parent_path();
+          std::error_code ignored;
           if (!parent.empty())
-            std::filesystem::create_directories(parent);
-          std::ofstream csv(summary_file, std::ios::app);
-          AssertThrow(csv,
-                      ExcInvalidInput("Output/Summary file",
-                                      summary_file,
-                                      "the file cannot be written; "
-                                      "check the directory"));
-          if (is_new)
-            csv << "dim,model,algorithm,n_ranks,n_nodes,n_constrained_nodes,"
-                   "h,horizon,m_ratio,n_bonds,nnz,solver,iterations,"
-                   "relative_residual,equilibrium_residual,l2_error,"
-                   "max_error,time_mesh,time_nodes,time_neighbors,"
-                   "time_operator,time_assembly,time_solve,time_output,"
-                   "time_total,peak_memory_mb,treatment,taylor_order,"
-                   "n_unknowns,n_surface_nodes,n_fictitious_nodes,"
-                   "max_normalized_error,operator,preconditioner,"
-                   "time_preconditioner,n_threads,problem_type\n";
+            std::filesystem::create_directories(parent, ignored);
+          std::ostringstream csv;
           const auto t = [&](const std::string &phase) {
             const auto it = summary.seconds.find(phase);
             return it == summary.seconds.end() ? 0. : it->second;
@@ -814,7 +856,20 @@ namespace PeriDEAL
               << t("preconditioner setup") << ','
               << MultithreadInfo::n_threads() << ",\"" << problem_name
               << "\"\n";
+          if (error.empty())
+            {
+              const std::string written =
+                write_then_rename(summary_file, [&](std::ostream &out) {
+                  out << (earlier.empty() ? header + "\n" : earlier)
+                      << csv.str();
+                });
+              if (!written.empty())
+                error = "Invalid value '" + summary_file +
+                        "' for the parameter 'Output/Summary file': " +
+                        written;
+            }
         }
+      throw_on_any_rank(error, communicator);
     }
 
 

@@ -119,6 +119,12 @@ expect_error 's|set Directory = out|set Directory = out\n  set Node data file = 
   "Invalid value 'nodes.csv' for the parameter 'Output/Node data file'"
 expect_error 's|set Directory = out|set Directory = out\n  set Summary file = not_a_directory/summary.csv|' \
   "Invalid value 'not_a_directory/summary.csv' for the parameter 'Output/Summary file'" 2
+# A summary file with other columns is not appended to (its rows would be
+# misread); it is left as it was.
+printf 'a,b\n1,2\n' > foreign.csv
+expect_error 's|set Directory = out|set Directory = out\n  set Summary file = foreign.csv|' \
+  "Invalid value 'foreign.csv' for the parameter 'Output/Summary file': the file exists with other columns" 2
+[ "$(cat foreign.csv)" = "$(printf 'a,b\n1,2')" ] || fail "the foreign summary file was changed"
 # Boundary treatments: a fictitious layer alone with free faces is singular;
 # surface nodes need equal square cells; the Taylor order is 1..3.
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/; s/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0/' \
