@@ -4,10 +4,16 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/solvers/linear_solver.h>
 
+#include <Amesos_Mumps.h>
+#include <Epetra_LinearProblem.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -15,6 +21,112 @@ namespace PeriDEAL
 {
   namespace Solvers
   {
+    namespace
+    {
+      /// MemAvailable of this host divided among the processes on it, in MB
+      /// (0 where /proc/meminfo is missing), or the environment variable
+      /// PERIDEAL_MEMORY_LIMIT_MB (per process) where it is set and smaller:
+      /// a cap for shared machines.
+      double
+      available_mb_per_process(const MPI_Comm comm)
+      {
+        double        available = 0, kb = 0;
+        std::string   key, unit;
+        std::ifstream meminfo("/proc/meminfo");
+        while (meminfo >> key >> kb >> unit)
+          if (key == "MemAvailable:")
+            {
+              available = kb / 1024;
+              break;
+            }
+        MPI_Comm host;
+        MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+        const unsigned int on_host =
+          dealii::Utilities::MPI::n_mpi_processes(host);
+        MPI_Comm_free(&host);
+        available /= on_host;
+        if (const char *limit = std::getenv("PERIDEAL_MEMORY_LIMIT_MB"))
+          {
+            const double cap = std::atof(limit);
+            if (cap > 0 && (available <= 0 || cap < available))
+              available = cap;
+          }
+        return available;
+      }
+
+      /**
+       * Solve with MUMPS through Amesos, in its three phases, so that the
+       * analysis's memory estimate (INFO(15), MB per process) is checked
+       * against the memory available before the factorisation allocates
+       * it, and MUMPS's error codes (INFOG(1)) are translated. Every check
+       * is shared by all processes before anyone throws.
+       */
+      void
+      solve_with_mumps(const TrilinosWrappers::SparseMatrix &matrix,
+                       TrilinosWrappers::MPI::Vector        &solution,
+                       const TrilinosWrappers::MPI::Vector  &rhs)
+      {
+        const MPI_Comm       comm = matrix.get_mpi_communicator();
+        Epetra_LinearProblem problem(
+          const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()),
+          &solution.trilinos_vector(),
+          const_cast<Epetra_MultiVector *>(
+            static_cast<const Epetra_MultiVector *>(&rhs.trilinos_vector())));
+        Amesos_Mumps mumps(problem);
+        const std::string size = std::to_string(matrix.m()) + " unknowns and " +
+                                 std::to_string(matrix.n_nonzero_elements()) +
+                                 " nonzeros";
+        const std::string fix =
+          "use 'Linear solver/Operator = matrix-free' with 'Method = CG' "
+          "(GMRES for the layer treatments) and a preconditioner, which "
+          "needs no factors";
+        const auto error_of = [&](const int code) {
+          // MUMPS's INFO(1) where Amesos reported a failure (-1 if MUMPS
+          // itself did not), the most negative over the processes.
+          const int local =
+            code == 0 ? 0 : std::min(mumps.GetINFO()[0], -1);
+          const int infog1 = dealii::Utilities::MPI::min(local, comm);
+          if (infog1 == 0)
+            return std::string();
+          if (infog1 == -10)
+            return "The direct solver (MUMPS) found the matrix singular (" +
+                   size +
+                   "): a rigid motion is not fixed, or nodes have no bonds. "
+                   "Check 'Boundary conditions/Dirichlet boundary ids' and "
+                   "'Dirichlet components'.";
+          if (infog1 == -8 || infog1 == -9 || infog1 == -13 || infog1 == -14 ||
+              infog1 == -19 || infog1 == -20)
+            return "The direct solver (MUMPS) ran out of memory (" + size +
+                   "; MUMPS error " + std::to_string(infog1) +
+                   "): the factors of PD matrices are nearly dense; " + fix +
+                   ".";
+          return "The direct solver (MUMPS) failed with error INFOG(1) = " +
+                 std::to_string(infog1) + " (" + size + "); " + fix +
+                 ", or see the MUMPS manual for the code.";
+        };
+
+        throw_on_any_rank(error_of(mumps.SymbolicFactorization()), comm);
+        // INFO(15): MB this process needs for the numerical phases.
+        const double needed    = mumps.GetINFO()[14];
+        const double available = available_mb_per_process(comm);
+        const bool   fits      = available <= 0 || needed <= 0.9 * available;
+        const double total_needed =
+          dealii::Utilities::MPI::sum(needed, comm);
+        throw_on_any_rank(
+          fits ? std::string() :
+                 "The direct solver (MUMPS) would need an estimated " +
+                   format_number(total_needed) + " MB for its factors (" +
+                   size + "), " + format_number(needed) +
+                   " MB on a process that has " + format_number(available) +
+                   " MB available; " + fix +
+                   ".",
+          comm);
+        throw_on_any_rank(error_of(mumps.NumericFactorization()), comm);
+        throw_on_any_rank(error_of(mumps.Solve()), comm);
+      }
+    } // namespace
+
+
     void
     LinearSolver::declare_parameters(ParameterHandler &prm)
     {
@@ -191,32 +303,36 @@ namespace PeriDEAL
       if (method_name == "direct")
         {
           report.method = "direct (Amesos " + direct_package + ")";
-          SolverControl                                  control(1, 0);
-          TrilinosWrappers::SolverDirect::AdditionalData data(
-            false,
-            direct_package == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu");
-          TrilinosWrappers::SolverDirect solver(control, data);
-          try
+          if (direct_package == "MUMPS")
+            solve_with_mumps(matrix, solution, rhs);
+          else
             {
-              solver.solve(matrix, solution, rhs);
-            }
-          catch (const ExceptionBase &exc)
-            {
-              std::ostringstream original;
-              exc.print_info(original);
-              AssertThrow(
-                false,
-                ExcMessage(
-                  "The direct solver (" + report.method + ") failed on " +
-                  std::to_string(matrix.m()) + " unknowns with " +
-                  std::to_string(matrix.n_nonzero_elements()) +
-                  " nonzeros. Either the matrix is singular (a rigid motion "
-                  "that no Dirichlet condition fixes) or the factorisation "
-                  "ran out of memory (the factors of PD matrices are nearly "
-                  "dense). Check 'Boundary conditions/Dirichlet boundary "
-                  "ids', or use 'Linear solver/Operator = matrix-free' with "
-                  "'Method = CG'. Trilinos said: " +
-                  original.str()));
+              SolverControl control(1, 0);
+              TrilinosWrappers::SolverDirect::AdditionalData data(
+                false, "Amesos_Klu");
+              TrilinosWrappers::SolverDirect solver(control, data);
+              try
+                {
+                  solver.solve(matrix, solution, rhs);
+                }
+              catch (const dealii::ExceptionBase &exc)
+                {
+                  std::ostringstream original;
+                  exc.print_info(original);
+                  AssertThrow(
+                    false,
+                    ExcMessage(
+                      "The direct solver (" + report.method + ") failed on " +
+                      std::to_string(matrix.m()) + " unknowns with " +
+                      std::to_string(matrix.n_nonzero_elements()) +
+                      " nonzeros: the matrix is singular (a rigid motion "
+                      "that no Dirichlet condition fixes) or the "
+                      "factorisation ran out of memory. Check 'Boundary "
+                      "conditions/Dirichlet boundary ids', or use 'Linear "
+                      "solver/Operator = matrix-free' with 'Method = CG'. "
+                      "Trilinos said: " +
+                      original.str()));
+                }
             }
           report.iterations = 1;
         }
@@ -296,7 +412,7 @@ namespace PeriDEAL
                 {
                   throw;
                 }
-              catch (const ExceptionBase &exc)
+              catch (const dealii::ExceptionBase &exc)
                 {
                   // AztecOO reports breakdowns as error codes.
                   std::ostringstream original;

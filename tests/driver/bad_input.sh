@@ -119,6 +119,12 @@ expect_error 's|set Directory = out|set Directory = out\n  set Node data file = 
   "Invalid value 'nodes.csv' for the parameter 'Output/Node data file'"
 expect_error 's|set Directory = out|set Directory = out\n  set Summary file = not_a_directory/summary.csv|' \
   "Invalid value 'not_a_directory/summary.csv' for the parameter 'Output/Summary file'" 2
+# The direct solver's factors checked against the memory available before
+# MUMPS allocates them (capped here at 1 kB per process).
+export PERIDEAL_MEMORY_LIMIT_MB=0.001
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Method = direct\nend/; s/set Subdivisions = 10, 10/set Subdivisions = 40, 40/' \
+  "The direct solver (MUMPS) would need an estimated" 2
+unset PERIDEAL_MEMORY_LIMIT_MB
 # A summary file with other columns is not appended to (its rows would be
 # misread); it is left as it was.
 printf 'a,b\n1,2\n' > foreign.csv
