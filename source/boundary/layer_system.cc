@@ -1,7 +1,13 @@
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/trilinos_precondition.h>
+
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/layer_system.h>
+#include <perideal/discretization/lattice.h>
+#include <perideal/operators/local_elasticity_operator.h>
 #include <perideal/problems/simulator_context.h>
 
 #include <iomanip>
@@ -27,14 +33,26 @@ namespace PeriDEAL
     LayerSystem<dim>::check_input(
       const Problems::Simulator<dim> &simulator) const
     {
-      AssertThrow(!simulator.get_linear_solver().is_matrix_free(),
-                  ExcInvalidInput(
-                    "Linear solver/Operator",
-                    "matrix-free",
-                    "the boundary treatment '" + treatment_name +
-                      "' is available with 'Operator = assembled' only so "
-                      "far; set it, or use 'Boundary treatment/Treatment = "
-                      "none'"));
+      const auto &solver = simulator.get_linear_solver();
+      if (!solver.is_matrix_free())
+        return;
+      // Without a matrix: the factored operator, GMRES or BiCGStab (the
+      // system is not symmetric), no preconditioner or local elasticity.
+      AssertThrow(solver.method() == "GMRES" || solver.method() == "BiCGStab",
+                  ExcInvalidInput("Linear solver/Method",
+                                  solver.method(),
+                                  "the boundary treatment '" + treatment_name +
+                                    "' gives a non-symmetric system: with "
+                                    "'Operator = matrix-free' use GMRES or "
+                                    "BiCGStab"));
+      AssertThrow(solver.preconditioner_name() == "none" ||
+                    solver.preconditioner_name() == "local elasticity",
+                  ExcInvalidInput("Linear solver/Preconditioner",
+                                  solver.preconditioner_name(),
+                                  "with 'Operator = matrix-free' the boundary "
+                                  "treatment '" + treatment_name +
+                                    "' offers 'local elasticity' or 'none' "
+                                    "(no diagonal is formed)"));
     }
 
 
@@ -113,6 +131,7 @@ namespace PeriDEAL
       const auto      ctx        = Problems::internal::context_of(simulator);
       const IndexSet &owned_dofs = ctx.dof_handler.locally_owned_dofs();
       const IndexSet &owned      = layer_operator.owned_unknowns();
+      const bool      matrix_free = ctx.linear_solver.is_matrix_free();
       std::map<types::global_dof_index, double> prescribed;
       {
         TimerOutput::Scope scope(ctx.timer, "assembly");
@@ -212,13 +231,19 @@ namespace PeriDEAL
           }
         system_rhs.compress(VectorOperation::insert);
         load = system_rhs; // the external loads, before elimination
-        layer_operator.assemble(prescribed, system_matrix, system_rhs);
+        if (matrix_free)
+          layer_operator.build_factors();
+        else
+          layer_operator.assemble(prescribed, system_matrix, system_rhs);
       }
       ctx.summary.n_unknowns = owned.size();
-      ctx.summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      ctx.summary.n_nonzeros =
+        matrix_free ? 0 : system_matrix.n_nonzero_elements();
       ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                << simulator.elapsed()
-                << " s] assembled: " << ctx.summary.n_unknowns << " unknowns, "
+                << simulator.elapsed() << " s] "
+                << (matrix_free ? "factored operator (no product matrix): " :
+                                  "assembled: ")
+                << ctx.summary.n_unknowns << " unknowns, "
                 << ctx.summary.n_nonzeros << " nonzeros, "
                 << ctx.summary.n_constrained_nodes
                 << (with_surface_nodes ?
@@ -227,6 +252,9 @@ namespace PeriDEAL
                 << " (non-symmetric)" << std::endl;
 
       TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
+      if (matrix_free)
+        solve_matrix_free(simulator, prescribed, solution);
+      else
       {
         TimerOutput::Scope scope(ctx.timer, "solve");
         // Rigid translations for AMG: the component of each unknown.
@@ -251,18 +279,21 @@ namespace PeriDEAL
       // Equilibrium with the factored operator (bond forces of the
       // completed neighbourhoods, K = A E + B X D E applied factor by
       // factor), not with the assembled and eliminated matrix that the
-      // solver used: |K u - f| over the free unknowns, relative to the
-      // larger of |K u| and |diag(K) u| (with completed neighbourhoods a
-      // linear field has K u = 0 everywhere, so |K u| alone is no scale).
+      // solver used: |K u - f| over the free unknowns, relative to
+      // |K| |u| (|K| estimated as |K r| / |r| for a fixed oscillating r):
+      // with completed neighbourhoods a linear field has K u = 0
+      // everywhere, so |K u| is no scale.
       {
-        TrilinosWrappers::MPI::Vector ku(owned, ctx.communicator);
+        TrilinosWrappers::MPI::Vector ku(owned, ctx.communicator),
+          r(owned, ctx.communicator), kr(owned, ctx.communicator);
         layer_operator.apply(solution, ku);
-        double diagonal2 = 0;
         for (const auto k : owned)
-          diagonal2 += std::pow(system_matrix.diag_element(k) * solution[k], 2);
-        const double scale =
-          std::max(ku.l2_norm(),
-                   std::sqrt(Utilities::MPI::sum(diagonal2, ctx.communicator)));
+          r[k] = std::sin(1.3 * k + 0.2);
+        r.compress(VectorOperation::insert);
+        layer_operator.apply(r, kr);
+        const double scale = std::max(ku.l2_norm(),
+                                      kr.l2_norm() / r.l2_norm() *
+                                        solution.l2_norm());
         double residual2 = 0;
         for (const auto k : owned)
           if (prescribed.find(k) == prescribed.end())
@@ -292,6 +323,113 @@ namespace PeriDEAL
             u[c] = solution[node.first_unknown + c];
           surface_displacement.push_back(u);
         }
+    }
+
+
+    template <int dim>
+    void
+    LayerSystem<dim>::solve_matrix_free(
+      Problems::Simulator<dim>                        &simulator,
+      const std::map<types::global_dof_index, double> &prescribed,
+      TrilinosWrappers::MPI::Vector                   &solution)
+    {
+      const auto         ctx   = Problems::internal::context_of(simulator);
+      const IndexSet    &owned = layer_operator.owned_unknowns();
+      const MPI_Comm     comm  = ctx.communicator;
+      using Vector             = TrilinosWrappers::MPI::Vector;
+      TimerOutput::Scope scope(ctx.timer, "solve");
+
+      // Prescribed unknowns eliminated: x = g + y with y = 0 there; the
+      // operator is K on free rows and the identity on prescribed ones.
+      std::vector<bool> is_prescribed(owned.n_elements(), false);
+      Vector            g(owned, comm), kg(owned, comm), rhs(owned, comm);
+      for (const auto &p : prescribed)
+        {
+          g[p.first]                                   = p.second;
+          is_prescribed[owned.index_within_set(p.first)] = true;
+        }
+      g.compress(VectorOperation::insert);
+      layer_operator.apply(g, kg);
+      rhs = load;
+      rhs -= kg;
+      const auto zero_prescribed = [&](Vector &v) {
+        double *values = v.trilinos_vector()[0];
+        for (unsigned int l = 0; l < is_prescribed.size(); ++l)
+          if (is_prescribed[l])
+            values[l] = 0;
+      };
+      zero_prescribed(rhs);
+      Vector     free_part(owned, comm);
+      const auto op = [&](Vector &dst, const Vector &src) {
+        free_part = src;
+        zero_prescribed(free_part);
+        layer_operator.apply(free_part, dst);
+        double       *out = dst.trilinos_vector()[0];
+        const double *in  = src.trilinos_vector()[0];
+        for (unsigned int l = 0; l < is_prescribed.size(); ++l)
+          if (is_prescribed[l])
+            out[l] = in[l];
+      };
+
+      // Local elasticity (Q1 on the dual grid of the body nodes, with the
+      // Dirichlet layers of the boundary conditions) on the body unknowns;
+      // surface unknowns scaled by the mean body diagonal.
+      Solvers::LinearSolver::TrilinosMap precondition;
+      TrilinosWrappers::PreconditionAMG  amg;
+      Vector body_residual, body_correction;
+      double surface_scale = 1;
+      if (ctx.linear_solver.preconditioner_name() == "local elasticity")
+        {
+          TimerOutput::Scope        inner(ctx.timer, "preconditioner setup");
+          Discretization::Lattice<dim> lattice;
+          lattice.reinit(ctx.nodes);
+          AffineConstraints<double> layers;
+          if (!with_surface_nodes)
+            layers.copy_from(constraints);
+          else
+            ctx.boundary_conditions.make_constraints(ctx.dof_handler,
+                                                     ctx.nodes,
+                                                     ctx.horizon,
+                                                     layers);
+          Operators::LocalElasticityOperator<dim>::assemble(
+            ctx.nodes, lattice, ctx.model, layers, local_matrix);
+          std::vector<std::vector<bool>> constant_modes;
+          DoFTools::extract_constant_modes(ctx.dof_handler,
+                                           ComponentMask(dim, true),
+                                           constant_modes);
+          TrilinosWrappers::PreconditionAMG::AdditionalData data;
+          data.elliptic       = true;
+          data.constant_modes = constant_modes;
+          amg.initialize(local_matrix, data);
+          double diagonal_sum = 0;
+          for (const auto dof : ctx.dof_handler.locally_owned_dofs())
+            diagonal_sum += local_matrix.diag_element(dof);
+          const double n_dofs = ctx.dof_handler.n_dofs();
+          surface_scale =
+            n_dofs / Utilities::MPI::sum(diagonal_sum, comm);
+          body_residual.reinit(ctx.dof_handler.locally_owned_dofs(), comm);
+          body_correction.reinit(body_residual);
+          precondition = [&](Vector &dst, const Vector &src) {
+            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+              for (unsigned int c = 0; c < dim; ++c)
+                body_residual[ctx.nodes[i].dofs[c]] =
+                  src[layer_operator.unknown_index(ctx.nodes[i], c)];
+            amg.vmult(body_correction, body_residual);
+            dst = src;
+            dst *= surface_scale;
+            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+              for (unsigned int c = 0; c < dim; ++c)
+                dst[layer_operator.unknown_index(ctx.nodes[i], c)] =
+                  body_correction[ctx.nodes[i].dofs[c]];
+          };
+        }
+      ctx.summary.solver =
+        ctx.linear_solver.solve(op,
+                                precondition,
+                                solution,
+                                rhs,
+                                ctx.linear_solver.preconditioner_name());
+      solution += g;
     }
 
 

@@ -805,10 +805,7 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    FictitiousLayerOperator<dim>::assemble(
-      const std::map<types::global_dof_index, double> &prescribed,
-      TrilinosWrappers::SparseMatrix                  &matrix,
-      TrilinosWrappers::MPI::Vector                   &rhs) const
+    FictitiousLayerOperator<dim>::build_factors() const
     {
       Impl                               &s     = *impl;
       const auto                         &nodes = *s.nodes;
@@ -1069,16 +1066,33 @@ namespace PeriDEAL
             }
         }
 
-      // The products.
       s.e_matrix = make_matrix(e_rows, ext_dofs, s.owned_sys, comm);
       s.a_matrix = make_matrix(a_rows, s.owned_sys, ext_dofs, comm);
-      const auto product_extension = multiply(*s.a_matrix, *s.e_matrix);
-      std::unique_ptr<Epetra_CrsMatrix> product_dilatation;
       if (s.state_based)
         {
           s.d_matrix = make_matrix(d_rows, body_scalar, ext_dofs, comm);
           s.x_matrix = make_matrix(x_rows, ext_scalar, body_scalar, comm);
           s.b_matrix = make_matrix(b_rows, s.owned_sys, ext_scalar, comm);
+        }
+    }
+
+
+    template <int dim>
+    void
+    FictitiousLayerOperator<dim>::assemble(
+      const std::map<types::global_dof_index, double> &prescribed,
+      TrilinosWrappers::SparseMatrix                  &matrix,
+      TrilinosWrappers::MPI::Vector                   &rhs) const
+    {
+      Impl          &s    = *impl;
+      const MPI_Comm comm = s.comm;
+      // The products.
+      if (!s.e_matrix)
+        build_factors();
+      const auto product_extension = multiply(*s.a_matrix, *s.e_matrix);
+      std::unique_ptr<Epetra_CrsMatrix> product_dilatation;
+      if (s.state_based)
+        {
           const auto de      = multiply(*s.d_matrix, *s.e_matrix);
           const auto xde     = multiply(*s.x_matrix, *de);
           product_dilatation = multiply(*s.b_matrix, *xde);
@@ -1181,7 +1195,7 @@ namespace PeriDEAL
       const Impl &s = *impl;
       AssertThrow(s.e_matrix && s.a_matrix,
                   ExcMessage("FictitiousLayerOperator::apply() needs the "
-                             "factors that assemble() builds: call assemble() "
+                             "factors: call build_factors() or assemble() "
                              "first."));
       const Epetra_MultiVector &x = u.trilinos_vector();
       Epetra_MultiVector       &y = ku.trilinos_vector();

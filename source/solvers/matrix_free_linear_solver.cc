@@ -177,6 +177,102 @@ namespace PeriDEAL
     }
 
 
+    namespace
+    {
+      /// A function as the operator of deal.II's solvers.
+      struct FunctionOperator
+      {
+        const LinearSolver::TrilinosMap &map;
+
+        void
+        vmult(TrilinosWrappers::MPI::Vector       &dst,
+              const TrilinosWrappers::MPI::Vector &src) const
+        {
+          map(dst, src);
+        }
+      };
+    } // namespace
+
+
+    SolverReport
+    LinearSolver::solve(const TrilinosMap                   &op,
+                        const TrilinosMap                   &precondition,
+                        TrilinosWrappers::MPI::Vector       &solution,
+                        const TrilinosWrappers::MPI::Vector &rhs,
+                        const std::string                   &label) const
+    {
+      using Vector = TrilinosWrappers::MPI::Vector;
+      Timer        timer;
+      SolverReport report;
+      report.method = method_name + " + " + label + " (matrix-free operator)";
+      AssertThrow(method_name == "GMRES" || method_name == "BiCGStab",
+                  ExcInvalidInput("Linear solver/Method",
+                                  method_name,
+                                  "this system is not symmetric and has no "
+                                  "matrix; use GMRES or BiCGStab"));
+      const double rhs_norm = rhs.l2_norm();
+      AssertThrow(std::isfinite(rhs_norm),
+                  ExcMessage("The right-hand side of the linear system "
+                             "holds non-finite values (NaN or Inf): check "
+                             "the body force, traction and Dirichlet "
+                             "expressions."));
+      solution = 0;
+      if (rhs_norm == 0)
+        return report;
+      const FunctionOperator A{op};
+      const FunctionOperator P{precondition};
+      SolverControl          control(max_iterations, tolerance * rhs_norm);
+      try
+        {
+          if (method_name == "GMRES")
+            {
+              // Right preconditioning: the stopping test sees the true
+              // residual, not the preconditioned one.
+              SolverGMRES<Vector> solver(
+                control,
+                typename SolverGMRES<Vector>::AdditionalData(restart_length,
+                                                             true));
+              if (precondition)
+                solver.solve(A, solution, rhs, P);
+              else
+                solver.solve(A, solution, rhs, PreconditionIdentity());
+            }
+          else
+            {
+              SolverBicgstab<Vector> solver(control);
+              if (precondition)
+                solver.solve(A, solution, rhs, P);
+              else
+                solver.solve(A, solution, rhs, PreconditionIdentity());
+            }
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          std::ostringstream message;
+          message << "The linear solver (" << report.method
+                  << ") did not converge: after " << e.last_step
+                  << " iterations the residual is "
+                  << e.last_residual / rhs_norm
+                  << " of |b|, above 'Linear solver/Relative tolerance' = "
+                  << tolerance
+                  << ". Raise 'Maximum iterations' or 'GMRES restart length', use "
+                     "'Preconditioner = local elasticity', or 'Operator = "
+                     "assembled' with a direct solver.";
+          AssertThrow(false, ExcMessage(message.str()));
+        }
+      report.iterations = control.last_step();
+      Vector residual(rhs);
+      op(residual, solution);
+      residual.sadd(-1., 1., rhs);
+      report.relative_residual = residual.l2_norm() / rhs_norm;
+      AssertThrow(std::isfinite(report.relative_residual),
+                  ExcMessage("The linear solve produced non-finite values "
+                             "(NaN or Inf)."));
+      report.seconds = timer.wall_time();
+      return report;
+    }
+
+
     template SolverReport
     LinearSolver::solve<2>(const Operators::ConstrainedOperator<2> &,
                            VectorType &,

@@ -166,8 +166,12 @@ expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n 
   "set 'Linear solver/Operator = matrix-free'" 2
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Method = CG\n  set Relative tolerance = 0\nend/' \
   "Invalid value '0' for the parameter 'Linear solver/Relative tolerance'"
+# The layer treatments without a product matrix: non-symmetric, so CG is
+# refused; no diagonal is formed, so Jacobi is refused.
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
-  "Invalid value 'matrix-free' for the parameter 'Linear solver/Operator'"
+  "Invalid value 'CG' for the parameter 'Linear solver/Method'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = Jacobi\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
+  "Invalid value 'Jacobi' for the parameter 'Linear solver/Preconditioner'" 2
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\n  set Maximum iterations = 3\nend/' \
   "did not converge: after 3 iterations" 2
 out=$("$perideal" --threads 0 base.prm 2>&1); [ $? -ne 0 ] || fail "--threads 0 exited with 0"

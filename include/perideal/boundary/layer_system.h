@@ -8,6 +8,8 @@
 #include <perideal/boundary/discrete_system.h>
 #include <perideal/operators/fictitious_layer_operator.h>
 
+#include <map>
+
 namespace PeriDEAL
 {
   namespace Boundary
@@ -19,8 +21,10 @@ namespace PeriDEAL
      * nodes; with surface nodes, each external cell face carries a node with
      * its own unknowns and force-flux equation, and the boundary conditions
      * are imposed there. The system is assembled (not symmetric) and solved
-     * by the simulator's linear solver; `Operator = matrix-free` is refused
-     * with both entries named.
+     * by the simulator's linear solver. With `Operator = matrix-free` no
+     * product matrix is formed: GMRES or BiCGStab run on the factored
+     * operator (FictitiousLayerOperator::apply()), preconditioned by the
+     * local elasticity operator on the body unknowns or not at all.
      */
     template <int dim>
     class LayerSystem : public DiscreteSystem<dim>
@@ -50,6 +54,14 @@ namespace PeriDEAL
       extra_nodes_name() const override;
 
     private:
+      /// GMRES or BiCGStab on FictitiousLayerOperator::apply() with the
+      /// prescribed unknowns eliminated (no product matrix).
+      void
+      solve_matrix_free(
+        Problems::Simulator<dim>                        &simulator,
+        const std::map<types::global_dof_index, double> &prescribed,
+        TrilinosWrappers::MPI::Vector                   &solution);
+
       const std::string  treatment_name;
       const bool         with_surface_nodes;
       const unsigned int taylor_order;
@@ -57,6 +69,7 @@ namespace PeriDEAL
       Operators::FictitiousLayerOperator<dim> layer_operator;
       AffineConstraints<double>               constraints;
       TrilinosWrappers::SparseMatrix          system_matrix;
+      TrilinosWrappers::SparseMatrix          local_matrix;
       TrilinosWrappers::MPI::Vector           load;
       TrilinosWrappers::MPI::Vector           system_rhs;
       // With surface nodes: their displacements, owned ones, in the order

@@ -170,6 +170,14 @@ namespace PeriDEAL
       apply(const TrilinosWrappers::MPI::Vector &u,
             TrilinosWrappers::MPI::Vector       &ku) const;
 
+      /**
+       * Build the sparse factors E, X (extrapolation), D (dilatation), A
+       * and B (bond forces) of the operator, for apply(); assemble() calls
+       * it when they are not there yet.
+       */
+      void
+      build_factors() const;
+
     private:
       struct Impl;
       std::unique_ptr<Impl> impl;

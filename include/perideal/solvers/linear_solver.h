@@ -9,6 +9,7 @@
 
 #include <perideal/operators/constrained_operator.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,26 @@ namespace PeriDEAL
             const LinearAlgebra::distributed::Vector<double> &rhs,
             const TrilinosWrappers::SparseMatrix             *local_matrix,
             const std::vector<std::vector<bool>> &constant_modes) const;
+
+      /// A linear map between Trilinos vectors: dst = A src.
+      using TrilinosMap =
+        std::function<void(TrilinosWrappers::MPI::Vector       &dst,
+                           const TrilinosWrappers::MPI::Vector &src)>;
+
+      /**
+       * Solve \f$A x = b\f$ for a non-symmetric @p op given only by its
+       * action (a matrix-free layer system): GMRES or BiCGStab ('Method'),
+       * preconditioned by @p precondition (the identity if empty), named
+       * @p label in reports. CG is refused (not symmetric); a solve that
+       * does not converge stops with the method, preconditioner, iterations
+       * and residual.
+       */
+      SolverReport
+      solve(const TrilinosMap                   &op,
+            const TrilinosMap                   &precondition,
+            TrilinosWrappers::MPI::Vector       &solution,
+            const TrilinosWrappers::MPI::Vector &rhs,
+            const std::string                   &label) const;
 
       const std::string &
       method() const;
