@@ -50,7 +50,8 @@ namespace PeriDEAL
                   ExcInvalidInput("Linear solver/Preconditioner",
                                   solver.preconditioner_name(),
                                   "with 'Operator = matrix-free' the boundary "
-                                  "treatment '" + treatment_name +
+                                  "treatment '" +
+                                    treatment_name +
                                     "' offers 'local elasticity' or 'none' "
                                     "(no diagonal is formed)"));
     }
@@ -58,7 +59,8 @@ namespace PeriDEAL
 
     template <int dim>
     bool
-    LayerSystem<dim>::is_constrained(const Discretization::Node<dim> &node) const
+    LayerSystem<dim>::is_constrained(
+      const Discretization::Node<dim> &node) const
     {
       // With surface nodes the conditions act on the surface nodes.
       if (with_surface_nodes)
@@ -94,7 +96,7 @@ namespace PeriDEAL
     void
     LayerSystem<dim>::setup(Problems::Simulator<dim> &simulator)
     {
-      auto       &summary   = simulator.get_summary();
+      auto &summary = simulator.get_summary();
       {
         TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
         layer_operator.reinit(simulator.get_dof_handler(),
@@ -124,13 +126,12 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LayerSystem<dim>::solve_linear(
-      Problems::Simulator<dim>      &simulator,
-      TrilinosWrappers::MPI::Vector &displacement)
+    LayerSystem<dim>::solve_linear(Problems::Simulator<dim>      &simulator,
+                                   TrilinosWrappers::MPI::Vector &displacement)
     {
-      const auto      ctx        = Problems::internal::context_of(simulator);
-      const IndexSet &owned_dofs = ctx.dof_handler.locally_owned_dofs();
-      const IndexSet &owned      = layer_operator.owned_unknowns();
+      const auto      ctx         = Problems::internal::context_of(simulator);
+      const IndexSet &owned_dofs  = ctx.dof_handler.locally_owned_dofs();
+      const IndexSet &owned       = layer_operator.owned_unknowns();
       const bool      matrix_free = ctx.linear_solver.is_matrix_free();
       std::map<types::global_dof_index, double> prescribed;
       {
@@ -246,35 +247,35 @@ namespace PeriDEAL
                 << ctx.summary.n_unknowns << " unknowns, "
                 << ctx.summary.n_nonzeros << " nonzeros, "
                 << ctx.summary.n_constrained_nodes
-                << (with_surface_nodes ?
-                      " prescribed surface-node components" :
-                      " nodes in Dirichlet layers")
+                << (with_surface_nodes ? " prescribed surface-node components" :
+                                         " nodes in Dirichlet layers")
                 << " (non-symmetric)" << std::endl;
 
       TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
       if (matrix_free)
         solve_matrix_free(simulator, prescribed, solution);
       else
-      {
-        TimerOutput::Scope scope(ctx.timer, "solve");
-        // Rigid translations for AMG: the component of each unknown.
-        std::vector<std::vector<bool>> constant_modes(
-          dim,
-          std::vector<bool>(owned.n_elements(), false));
-        for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
-          for (unsigned int c = 0; c < dim; ++c)
-            constant_modes[c][owned.index_within_set(
-              layer_operator.unknown_index(ctx.nodes[i], c))] = true;
-        for (const auto &node : layer_operator.owned_surface_nodes())
-          for (unsigned int c = 0; c < dim; ++c)
-            constant_modes[c][owned.index_within_set(node.first_unknown + c)] =
-              true;
-        ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
-                                                     solution,
-                                                     system_rhs,
-                                                     constant_modes,
-                                                     false);
-      }
+        {
+          TimerOutput::Scope scope(ctx.timer, "solve");
+          // Rigid translations for AMG: the component of each unknown.
+          std::vector<std::vector<bool>> constant_modes(
+            dim,
+            std::vector<bool>(owned.n_elements(), false));
+          for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              constant_modes[c][owned.index_within_set(
+                layer_operator.unknown_index(ctx.nodes[i], c))] = true;
+          for (const auto &node : layer_operator.owned_surface_nodes())
+            for (unsigned int c = 0; c < dim; ++c)
+              constant_modes[c]
+                            [owned.index_within_set(node.first_unknown + c)] =
+                              true;
+          ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
+                                                       solution,
+                                                       system_rhs,
+                                                       constant_modes,
+                                                       false);
+        }
       Problems::internal::print_solve(simulator, "");
       // Equilibrium with the factored operator (bond forces of the
       // completed neighbourhoods, K = A E + B X D E applied factor by
@@ -291,9 +292,9 @@ namespace PeriDEAL
           r[k] = std::sin(1.3 * k + 0.2);
         r.compress(VectorOperation::insert);
         layer_operator.apply(r, kr);
-        const double scale = std::max(ku.l2_norm(),
-                                      kr.l2_norm() / r.l2_norm() *
-                                        solution.l2_norm());
+        const double scale =
+          std::max(ku.l2_norm(),
+                   kr.l2_norm() / r.l2_norm() * solution.l2_norm());
         double residual2 = 0;
         for (const auto k : owned)
           if (prescribed.find(k) == prescribed.end())
@@ -333,10 +334,10 @@ namespace PeriDEAL
       const std::map<types::global_dof_index, double> &prescribed,
       TrilinosWrappers::MPI::Vector                   &solution)
     {
-      const auto         ctx   = Problems::internal::context_of(simulator);
-      const IndexSet    &owned = layer_operator.owned_unknowns();
-      const MPI_Comm     comm  = ctx.communicator;
-      using Vector             = TrilinosWrappers::MPI::Vector;
+      const auto      ctx   = Problems::internal::context_of(simulator);
+      const IndexSet &owned = layer_operator.owned_unknowns();
+      const MPI_Comm  comm  = ctx.communicator;
+      using Vector          = TrilinosWrappers::MPI::Vector;
       TimerOutput::Scope scope(ctx.timer, "solve");
 
       // Prescribed unknowns eliminated: x = g + y with y = 0 there; the
@@ -345,7 +346,7 @@ namespace PeriDEAL
       Vector            g(owned, comm), kg(owned, comm), rhs(owned, comm);
       for (const auto &p : prescribed)
         {
-          g[p.first]                                   = p.second;
+          g[p.first]                                     = p.second;
           is_prescribed[owned.index_within_set(p.first)] = true;
         }
       g.compress(VectorOperation::insert);
@@ -376,11 +377,11 @@ namespace PeriDEAL
       // surface unknowns scaled by the mean body diagonal.
       Solvers::LinearSolver::TrilinosMap precondition;
       TrilinosWrappers::PreconditionAMG  amg;
-      Vector body_residual, body_correction;
-      double surface_scale = 1;
+      Vector                             body_residual, body_correction;
+      double                             surface_scale = 1;
       if (ctx.linear_solver.preconditioner_name() == "local elasticity")
         {
-          TimerOutput::Scope        inner(ctx.timer, "preconditioner setup");
+          TimerOutput::Scope           inner(ctx.timer, "preconditioner setup");
           Discretization::Lattice<dim> lattice;
           lattice.reinit(ctx.nodes);
           AffineConstraints<double> layers;
@@ -391,8 +392,11 @@ namespace PeriDEAL
                                                      ctx.nodes,
                                                      ctx.horizon,
                                                      layers);
-          Operators::LocalElasticityOperator<dim>::assemble(
-            ctx.nodes, lattice, ctx.model, layers, local_matrix);
+          Operators::LocalElasticityOperator<dim>::assemble(ctx.nodes,
+                                                            lattice,
+                                                            ctx.model,
+                                                            layers,
+                                                            local_matrix);
           std::vector<std::vector<bool>> constant_modes;
           DoFTools::extract_constant_modes(ctx.dof_handler,
                                            ComponentMask(dim, true),
@@ -405,8 +409,7 @@ namespace PeriDEAL
           for (const auto dof : ctx.dof_handler.locally_owned_dofs())
             diagonal_sum += local_matrix.diag_element(dof);
           const double n_dofs = ctx.dof_handler.n_dofs();
-          surface_scale =
-            n_dofs / Utilities::MPI::sum(diagonal_sum, comm);
+          surface_scale = n_dofs / Utilities::MPI::sum(diagonal_sum, comm);
           body_residual.reinit(ctx.dof_handler.locally_owned_dofs(), comm);
           body_correction.reinit(body_residual);
           precondition = [&](Vector &dst, const Vector &src) {

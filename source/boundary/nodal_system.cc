@@ -77,7 +77,8 @@ namespace PeriDEAL
 
     template <int dim>
     bool
-    NodalSystem<dim>::is_constrained(const Discretization::Node<dim> &node) const
+    NodalSystem<dim>::is_constrained(
+      const Discretization::Node<dim> &node) const
     {
       for (const auto dof : node.dofs)
         if (constraints.is_constrained(dof))
@@ -88,7 +89,8 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    NodalSystem<dim>::make_constraints_and_load(Problems::Simulator<dim> &simulator)
+    NodalSystem<dim>::make_constraints_and_load(
+      Problems::Simulator<dim> &simulator)
     {
       const auto ctx = Problems::internal::context_of(simulator);
       ctx.boundary_conditions.make_constraints(ctx.dof_handler,
@@ -186,7 +188,7 @@ namespace PeriDEAL
       Problems::Simulator<dim>      &simulator,
       TrilinosWrappers::MPI::Vector &displacement)
     {
-      const auto ctx = Problems::internal::context_of(simulator);
+      const auto ctx           = Problems::internal::context_of(simulator);
       ctx.summary.n_unknowns   = ctx.dof_handler.n_dofs();
       const IndexSet &owned    = ctx.dof_handler.locally_owned_dofs();
       const IndexSet  relevant = ctx.nodes.relevant_dofs();

@@ -18,8 +18,8 @@
 #include <Epetra_MpiComm.h>
 
 #include <algorithm>
-#include <limits>
 #include <cstdint>
+#include <limits>
 
 namespace PeriDEAL
 {
@@ -180,7 +180,7 @@ namespace PeriDEAL
                                    const unsigned int k) -> std::ptrdiff_t {
         if (!use_lattice)
           return k;
-        const auto &x = lattice.coordinates(i), &y = lattice.coordinates(k);
+        const auto    &x = lattice.coordinates(i), &y = lattice.coordinates(k);
         std::ptrdiff_t key = 0, stride = 1;
         for (unsigned int d = 0; d < dim; ++d)
           {
@@ -208,25 +208,25 @@ namespace PeriDEAL
             }
         };
         touch(key_i);
-        for_each_bond_constants(
-          i,
-          key_i,
-          box_delta,
-          [&](const std::size_t    slot_j,
-              const std::ptrdiff_t key_j,
-              const double *,
-              const double,
-              const double,
-              const double) {
-            touch(key_j);
-            if (!state_based)
-              return;
-            const unsigned int j = node_of_slot(slot_j);
-            if (on_full_stencil(j))
-              for (const auto delta : box_delta)
-                touch(key_j + delta);
-            else
-              for_each_bond_constants(j,
+        for_each_bond_constants(i,
+                                key_i,
+                                box_delta,
+                                [&](const std::size_t    slot_j,
+                                    const std::ptrdiff_t key_j,
+                                    const double *,
+                                    const double,
+                                    const double,
+                                    const double) {
+                                  touch(key_j);
+                                  if (!state_based)
+                                    return;
+                                  const unsigned int j = node_of_slot(slot_j);
+                                  if (on_full_stencil(j))
+                                    for (const auto delta : box_delta)
+                                      touch(key_j + delta);
+                                  else
+                                    for_each_bond_constants(
+                                      j,
                                       key_j,
                                       box_delta,
                                       [&](const std::size_t,
@@ -235,7 +235,7 @@ namespace PeriDEAL
                                           const double,
                                           const double,
                                           const double) { touch(key_q); });
-          });
+                                });
         std::sort(keys.begin(), keys.end());
         for (const auto key : keys)
           mark[key] = 0;
@@ -291,25 +291,25 @@ namespace PeriDEAL
                     }
                 }
             else
-              for_each_bond_constants(
-                j,
-                key_j,
-                box_delta,
-                [&](const std::size_t,
-                    const std::ptrdiff_t key_q,
-                    const double        *n_jq,
-                    const double         g_jq,
-                    const double,
-                    const double) {
-                  Tensor<2, dim> &target = block[key_q];
-                  for (unsigned int q = 0; q < dim; ++q)
-                    {
-                      const double gn = g_jq * n_jq[q];
-                      G_j[q] += gn;
-                      for (unsigned int p = 0; p < dim; ++p)
-                        target[p][q] += t[p] * gn;
-                    }
-                });
+              for_each_bond_constants(j,
+                                      key_j,
+                                      box_delta,
+                                      [&](const std::size_t,
+                                          const std::ptrdiff_t key_q,
+                                          const double        *n_jq,
+                                          const double         g_jq,
+                                          const double,
+                                          const double) {
+                                        Tensor<2, dim> &target = block[key_q];
+                                        for (unsigned int q = 0; q < dim; ++q)
+                                          {
+                                            const double gn = g_jq * n_jq[q];
+                                            G_j[q] += gn;
+                                            for (unsigned int p = 0; p < dim;
+                                                 ++p)
+                                              target[p][q] += t[p] * gn;
+                                          }
+                                      });
             for (unsigned int p = 0; p < dim; ++p)
               for (unsigned int q = 0; q < dim; ++q)
                 block[key_j][p][q] -= t[p] * G_j[q];
@@ -327,8 +327,7 @@ namespace PeriDEAL
                                     const double) {
                                   for (unsigned int p = 0; p < dim; ++p)
                                     for (unsigned int q = 0; q < dim; ++q)
-                                      block[key_j][p][q] +=
-                                        A[p] * g * n_ij[q];
+                                      block[key_j][p][q] += A[p] * g * n_ij[q];
                                 });
         for (unsigned int p = 0; p < dim; ++p)
           for (unsigned int q = 0; q < dim; ++q)
@@ -528,9 +527,8 @@ namespace PeriDEAL
                   if (prescribed[std::size_t(i) * dim + r])
                     {
                       int diagonal = column_of_node[i] * dim + r;
-                      error        = graph.InsertMyIndices(row_of_node[i] + r,
-                                                    1,
-                                                    &diagonal);
+                      error =
+                        graph.InsertMyIndices(row_of_node[i] + r, 1, &diagonal);
                     }
                   else
                     error = graph.InsertMyIndices(row_of_node[i] + r,

@@ -5,10 +5,10 @@
 #include <perideal/operators/fictitious_layer_operator.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
+#include <EpetraExt_MatrixMatrix.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
 #include <Epetra_Vector.h>
-#include <EpetraExt_MatrixMatrix.h>
 
 #include <algorithm>
 #include <array>
@@ -57,8 +57,10 @@ namespace PeriDEAL
             AssertThrow(lid >= 0, ExcInternalError());
             counts[lid] = row.second.size();
           }
-        auto matrix =
-          std::make_unique<Epetra_CrsMatrix>(Copy, row_map, counts.data(), true);
+        auto                matrix = std::make_unique<Epetra_CrsMatrix>(Copy,
+                                                         row_map,
+                                                         counts.data(),
+                                                         true);
         std::vector<int>    cols;
         std::vector<double> vals;
         for (const auto &row : rows)
@@ -84,7 +86,7 @@ namespace PeriDEAL
       std::unique_ptr<Epetra_CrsMatrix>
       multiply(const Epetra_CrsMatrix &a, const Epetra_CrsMatrix &b)
       {
-        auto c = std::make_unique<Epetra_CrsMatrix>(Copy, a.RowMap(), 0);
+        auto      c = std::make_unique<Epetra_CrsMatrix>(Copy, a.RowMap(), 0);
         const int ierr =
           EpetraExt::MatrixMatrix::Multiply(a, false, b, false, *c, true);
         AssertThrow(ierr == 0,
@@ -101,15 +103,15 @@ namespace PeriDEAL
       MPI_Comm comm = MPI_COMM_SELF;
 
       // Lattice.
-      double                   h = 0;
-      Point<dim>               origin;
-      int                      margin = 0;
-      std::array<int, dim>     extent{};
+      double                     h = 0;
+      Point<dim>                 origin;
+      int                        margin = 0;
+      std::array<int, dim>       extent{};
       std::array<long long, dim> stride{};
-      long long                n_lattice = 0;
+      long long                  n_lattice = 0;
 
       // Body nodes known here (owned and ghost), by lattice key.
-      const Discretization::NodeSet<dim> *nodes = nullptr;
+      const Discretization::NodeSet<dim>   *nodes = nullptr;
       std::unordered_map<int, unsigned int> body;
 
       // Unknown numbering.
@@ -119,33 +121,33 @@ namespace PeriDEAL
 
       // Surface nodes: all of them on every process (their number grows
       // like the surface only), with a lookup by half-lattice position.
-      bool                                  with_surface = false;
-      std::vector<SurfaceNode>              owned_surface;
-      std::vector<HalfPoint<dim>>           surface_position;
-      std::vector<types::global_dof_index>  surface_unknown;
+      bool                                 with_surface = false;
+      std::vector<SurfaceNode>             owned_surface;
+      std::vector<HalfPoint<dim>>          surface_position;
+      std::vector<types::global_dof_index> surface_unknown;
       std::unordered_map<long long, std::vector<unsigned int>> surface_buckets;
-      int                                    bucket_size = 1;
+      int                                                      bucket_size = 1;
 
       // Fictitious nodes owned here: lattice key and nearest body node.
       std::vector<std::pair<int, unsigned int>> owned_fictitious;
       unsigned int                              n_fictitious_global = 0;
 
       // Bond data.
-      unsigned int                                     order = 1;
-      double                                           m_ratio = 0;
-      double                                           m0    = 0;
-      bool                                             state_based = true;
-      std::vector<Quadrature::WeightedOffset<dim>>     neighbours;
-      std::vector<std::array<int, dim>>                search_offsets;
-      std::vector<long long>                           search_length2;
-      long long                                        reach2 = 0;
+      unsigned int                                 order       = 1;
+      double                                       m_ratio     = 0;
+      double                                       m0          = 0;
+      bool                                         state_based = true;
+      std::vector<Quadrature::WeightedOffset<dim>> neighbours;
+      std::vector<std::array<int, dim>>            search_offsets;
+      std::vector<long long>                       search_length2;
+      long long                                    reach2 = 0;
       std::vector<double> omega_r, a_r, b2_r, g_r; // per neighbour offset
       std::unordered_map<int, signed char> status_cache;
 
       // The factors of the operator, K = A E + B X D E, kept by assemble()
       // for apply() (B, X, D only for state-based models).
-      std::unique_ptr<Epetra_CrsMatrix> e_matrix, a_matrix, d_matrix,
-        x_matrix, b_matrix;
+      std::unique_ptr<Epetra_CrsMatrix> e_matrix, a_matrix, d_matrix, x_matrix,
+        b_matrix;
 
 
       int
@@ -206,8 +208,7 @@ namespace PeriDEAL
         long long k = 0, s = 1;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            const int b =
-              (p[d] + 2 * margin + 2) / bucket_size; // non-negative
+            const int b = (p[d] + 2 * margin + 2) / bucket_size; // non-negative
             k += b * s;
             s *= (2 * (extent[d] + 2 * margin) + 5) / bucket_size + 2;
           }
@@ -325,8 +326,8 @@ namespace PeriDEAL
               {
                 const int b = b0[d] + static_cast<int>(rest % 3) - 1;
                 rest /= 3;
-                ok    = ok && b >= 0;
-                q[d]  = b * bucket_size - 2 * margin - 2;
+                ok   = ok && b >= 0;
+                q[d] = b * bucket_size - 2 * margin - 2;
               }
             if (!ok)
               continue;
@@ -373,8 +374,8 @@ namespace PeriDEAL
         };
         const Tensor<1, dim> t = scaled(target);
         std::vector<double>  w;
-        const unsigned int   needed = Boundary::n_taylor_terms(dim, taylor_order);
-        std::size_t          end    = 0;
+        const unsigned int needed = Boundary::n_taylor_terms(dim, taylor_order);
+        std::size_t        end    = 0;
         while (end < candidates.size())
           {
             const long long shell = candidates[end].length2;
@@ -417,8 +418,7 @@ namespace PeriDEAL
         for (unsigned int d = 0; d < dim; ++d)
           c0[d] = static_cast<int>(std::floor(0.5 * (centre[d] - 1)));
         std::array<int, dim> o;
-        const auto           visit = [&](const auto &self,
-                                         const unsigned int d) -> void {
+        const auto visit = [&](const auto &self, const unsigned int d) -> void {
           if (d == dim)
             {
               std::array<int, dim> c;
@@ -435,12 +435,12 @@ namespace PeriDEAL
               if (l > radius2)
                 return;
               const auto &node = (*nodes)[it->second];
-              out.push_back(
-                {l,
-                 1,
-                 k,
-                 p,
-                 as_unknowns ? sys_of_dof(node.dofs[0], node.owner) :
+              out.push_back({l,
+                             1,
+                             k,
+                             p,
+                             as_unknowns ?
+                               sys_of_dof(node.dofs[0], node.owner) :
                                static_cast<types::global_dof_index>(k)});
               return;
             }
@@ -473,13 +473,13 @@ namespace PeriDEAL
       const bool                            with_surface_nodes,
       const unsigned int                    taylor_order)
     {
-      impl        = std::make_unique<Impl>();
-      Impl &s     = *impl;
-      s.comm      = nodes.get_communicator();
-      s.nodes     = &nodes;
-      s.order     = taylor_order;
-      s.with_surface = with_surface_nodes;
-      s.state_based  = model.is_state_based();
+      impl                       = std::make_unique<Impl>();
+      Impl &s                    = *impl;
+      s.comm                     = nodes.get_communicator();
+      s.nodes                    = &nodes;
+      s.order                    = taylor_order;
+      s.with_surface             = with_surface_nodes;
+      s.state_based              = model.is_state_based();
       const MPI_Comm     comm    = s.comm;
       const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
       const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
@@ -523,8 +523,8 @@ namespace PeriDEAL
                     ". Fix: choose Subdivisions that give equal sides, no "
                     "local refinement, or a mesh file of equal cubes; or set "
                     "'Boundary treatment/Treatment = none'."));
-      s.h      = h_max;
-      s.origin = lower;
+      s.h            = h_max;
+      s.origin       = lower;
       const double h = s.h;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         for (unsigned int d = 0; d < dim; ++d)
@@ -538,11 +538,11 @@ namespace PeriDEAL
                                    "cubes."));
           }
 
-      const double                         m_ratio = horizon / h;
+      const double                              m_ratio = horizon / h;
       const Quadrature::UniformGridWeights<dim> table(algorithm, m_ratio);
-      s.m_ratio    = m_ratio;
-      s.neighbours = table.neighbours();
-      s.margin     = table.max_offset() + 6;
+      s.m_ratio       = m_ratio;
+      s.neighbours    = table.neighbours();
+      s.margin        = table.max_offset() + 6;
       long long total = 1;
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -619,13 +619,14 @@ namespace PeriDEAL
             r2 += n.offset[d] * n.offset[d];
           const double r = std::sqrt(r2) * h;
           s.omega_r.push_back(model.influence(r, horizon));
-          s.a_r.push_back(
-            s.state_based ? model.dilatation_coefficient(s.m0, r, horizon) : 0.);
+          s.a_r.push_back(s.state_based ?
+                            model.dilatation_coefficient(s.m0, r, horizon) :
+                            0.);
           s.b2_r.push_back(2 * model.extension_coefficient(s.m0, r, horizon));
-          s.g_r.push_back(s.state_based ? dim / s.m0 *
-                                            model.influence(r, horizon) * r *
-                                            n.beta * volume :
-                                          0.);
+          s.g_r.push_back(s.state_based ?
+                            dim / s.m0 * model.influence(r, horizon) * r *
+                              n.beta * volume :
+                            0.);
         }
 
       // Owned surface nodes: external faces of owned cells.
@@ -671,7 +672,7 @@ namespace PeriDEAL
         owned_dofs.n_elements() > 0 ? *owned_dofs.begin() : 0;
       const types::global_dof_index n_local_sys =
         owned_dofs.n_elements() + dim * s.owned_surface.size();
-      s.dof_start = Utilities::MPI::all_gather(comm, first_dof);
+      s.dof_start            = Utilities::MPI::all_gather(comm, first_dof);
       const auto n_local_all = Utilities::MPI::all_gather(comm, n_local_sys);
       s.sys_start.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
@@ -698,8 +699,9 @@ namespace PeriDEAL
             }
           const auto all = Utilities::MPI::all_gather(comm, mine);
           s.bucket_size =
-            2 * static_cast<int>(std::ceil(std::max<double>(
-                  m_ratio + 1.5 * std::sqrt(double(dim)) + 1, taylor_order + 3)));
+            2 * static_cast<int>(std::ceil(
+                  std::max<double>(m_ratio + 1.5 * std::sqrt(double(dim)) + 1,
+                                   taylor_order + 3)));
           for (const auto &part : all)
             for (std::size_t e = 0; e < part.size(); e += dim + 1)
               {
@@ -730,16 +732,19 @@ namespace PeriDEAL
                 const int k = s.key(c);
                 if (s.body.count(k) || seen.count(k))
                   continue;
-                seen[k]                = true;
-                const unsigned int b   = s.nearest_body(c);
-                s.status_cache[k]      = (b != numbers::invalid_unsigned_int) ? 2 : 0;
+                seen[k]              = true;
+                const unsigned int b = s.nearest_body(c);
+                s.status_cache[k] =
+                  (b != numbers::invalid_unsigned_int) ? 2 : 0;
                 if (b != numbers::invalid_unsigned_int && b < nodes.n_owned())
                   s.owned_fictitious.emplace_back(k, b);
               }
           }
         std::sort(s.owned_fictitious.begin(), s.owned_fictitious.end());
-        s.n_fictitious_global = Utilities::MPI::sum(
-          static_cast<unsigned int>(s.owned_fictitious.size()), comm);
+        s.n_fictitious_global =
+          Utilities::MPI::sum(static_cast<unsigned int>(
+                                s.owned_fictitious.size()),
+                              comm);
       }
     }
 
@@ -774,8 +779,9 @@ namespace PeriDEAL
     unsigned int
     FictitiousLayerOperator<dim>::n_surface_nodes() const
     {
-      return Utilities::MPI::sum(
-        static_cast<unsigned int>(impl->owned_surface.size()), impl->comm);
+      return Utilities::MPI::sum(static_cast<unsigned int>(
+                                   impl->owned_surface.size()),
+                                 impl->comm);
     }
 
 
@@ -807,13 +813,13 @@ namespace PeriDEAL
     void
     FictitiousLayerOperator<dim>::build_factors() const
     {
-      Impl                               &s     = *impl;
-      const auto                         &nodes = *s.nodes;
-      const MPI_Comm                      comm  = s.comm;
-      const double                        h     = s.h;
-      const double                        V     = std::pow(h, dim);
-      const unsigned int                  n_owned = nodes.n_owned();
-      using Cell                                  = std::array<int, dim>;
+      Impl              &s       = *impl;
+      const auto        &nodes   = *s.nodes;
+      const MPI_Comm     comm    = s.comm;
+      const double       h       = s.h;
+      const double       V       = std::pow(h, dim);
+      const unsigned int n_owned = nodes.n_owned();
+      using Cell                 = std::array<int, dim>;
 
       const auto cell_of_body = [&](const unsigned int i) {
         const HalfPoint<dim> p = s.body_half(i);
@@ -837,7 +843,7 @@ namespace PeriDEAL
       const auto make_set = [](const std::vector<int> &keys,
                                const long long         size,
                                const unsigned int      block) {
-        IndexSet set(size * block);
+        IndexSet                             set(size * block);
         std::vector<types::global_dof_index> list;
         for (const int k : keys)
           for (unsigned int c = 0; c < block; ++c)
@@ -846,8 +852,8 @@ namespace PeriDEAL
         set.compress();
         return set;
       };
-      const IndexSet ext_dofs   = make_set(owned_ext_keys, s.n_lattice, dim);
-      const IndexSet ext_scalar = make_set(owned_ext_keys, s.n_lattice, 1);
+      const IndexSet ext_dofs    = make_set(owned_ext_keys, s.n_lattice, dim);
+      const IndexSet ext_scalar  = make_set(owned_ext_keys, s.n_lattice, 1);
       const IndexSet body_scalar = make_set(owned_body_keys, s.n_lattice, 1);
 
       // E: lattice displacements from the unknowns.
@@ -856,8 +862,8 @@ namespace PeriDEAL
         {
           const int k = s.key(cell_of_body(i));
           for (unsigned int c = 0; c < dim; ++c)
-            e_rows[dim * k + c][s.sys_of_dof(nodes[i].dofs[c], nodes[i].owner)] =
-              1.;
+            e_rows[dim * k + c]
+                  [s.sys_of_dof(nodes[i].dofs[c], nodes[i].owner)] = 1.;
         }
       // X: lattice dilatations from body dilatations.
       RowMap x_rows;
@@ -914,8 +920,8 @@ namespace PeriDEAL
       RowMap d_rows, a_rows, b_rows;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
-          const Cell ci = cell_of_body(i);
-          const int  ki = s.key(ci);
+          const Cell                               ci = cell_of_body(i);
+          const int                                ki = s.key(ci);
           std::array<types::global_dof_index, dim> row;
           for (unsigned int c = 0; c < dim; ++c)
             row[c] = s.sys_of_dof(nodes[i].dofs[c], nodes[i].owner);
@@ -962,9 +968,8 @@ namespace PeriDEAL
       // Force flux of every owned surface node (paper Eq. 36).
       if (s.with_surface)
         {
-          const int reach = static_cast<int>(std::ceil(
-                              s.m_ratio + std::sqrt(double(dim)))) +
-                            1;
+          const int reach =
+            static_cast<int>(std::ceil(s.m_ratio + std::sqrt(double(dim)))) + 1;
           for (const auto &node : s.owned_surface)
             {
               HalfPoint<dim> ps;
@@ -979,8 +984,8 @@ namespace PeriDEAL
               for (unsigned int d = 0; d < dim; ++d)
                 c0[d] = (d == a) ? (F - side - 1) / 2 : (ps[d] - 1) / 2;
 
-              Cell o;
-              const auto visit = [&](const auto &self,
+              Cell       o;
+              const auto visit = [&](const auto        &self,
                                      const unsigned int d) -> void {
                 if (d < dim)
                   {
@@ -1006,8 +1011,8 @@ namespace PeriDEAL
                     if (side * (pk_a - F) <= 0)
                       continue; // does not cross the plane
                     // Crossing point, tangential coordinates times |D|.
-                    const long long D    = 2LL * nb.offset[a];
-                    const long long Dabs = D > 0 ? D : -D;
+                    const long long D     = 2LL * nb.offset[a];
+                    const long long Dabs  = D > 0 ? D : -D;
                     double          alpha = 1;
                     bool            hit   = true;
                     for (unsigned int t = 0; t < dim && hit; ++t)
@@ -1137,7 +1142,7 @@ namespace PeriDEAL
         if (ghosted_flags[k] != 0.)
           column_prescribed[static_cast<int>(k)] = true;
 
-      Epetra_CrsMatrix    result(Copy, sys_map, 0);
+      Epetra_CrsMatrix      result(Copy, sys_map, 0);
       std::map<int, double> row;
       std::vector<int>      cols;
       std::vector<double>   vals;
@@ -1188,9 +1193,8 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    FictitiousLayerOperator<dim>::apply(
-      const TrilinosWrappers::MPI::Vector &u,
-      TrilinosWrappers::MPI::Vector       &ku) const
+    FictitiousLayerOperator<dim>::apply(const TrilinosWrappers::MPI::Vector &u,
+                                        TrilinosWrappers::MPI::Vector &ku) const
     {
       const Impl &s = *impl;
       AssertThrow(s.e_matrix && s.a_matrix,

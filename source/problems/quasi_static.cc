@@ -50,9 +50,8 @@ namespace PeriDEAL
                         "analytical solution: set 'Analytical solution/Compare "
                         "with analytical solution = true', or leave the entry "
                         "empty"));
-      simulator.get_boundary_treatment()
-        .make_system(simulator)
-        ->check_input(simulator);
+      simulator.get_boundary_treatment().make_system(simulator)->check_input(
+        simulator);
     }
 
 
@@ -73,9 +72,9 @@ namespace PeriDEAL
     {
       const auto                 ctx     = context_of(simulator);
       const unsigned int         n_owned = ctx.nodes.n_owned();
-      std::vector<IO::NodeField> fields = {{"node_volume", {}},
-                                           {"mpi_rank", {}},
-                                           {"constrained", {}}};
+      std::vector<IO::NodeField> fields  = {{"node_volume", {}},
+                                            {"mpi_rank", {}},
+                                            {"constrained", {}}};
       const double rank = Utilities::MPI::this_mpi_process(ctx.communicator);
       for (unsigned int i = 0; i < n_owned; ++i)
         {

@@ -802,7 +802,7 @@ namespace PeriDEAL
       // truncates the rows of earlier runs. Process 0 writes; its verdict
       // is shared.
       const std::string header = summary_header;
-      std::string error;
+      std::string       error;
       if (Utilities::MPI::this_mpi_process(communicator) == 0)
         {
           std::string earlier;
@@ -826,7 +826,7 @@ namespace PeriDEAL
           if (!parent.empty())
             std::filesystem::create_directories(parent, ignored);
           std::ostringstream csv;
-          const auto t = [&](const std::string &phase) {
+          const auto         t = [&](const std::string &phase) {
             const auto it = summary.seconds.find(phase);
             return it == summary.seconds.end() ? 0. : it->second;
           };
@@ -865,8 +865,7 @@ namespace PeriDEAL
                 });
               if (!written.empty())
                 error = "Invalid value '" + summary_file +
-                        "' for the parameter 'Output/Summary file': " +
-                        written;
+                        "' for the parameter 'Output/Summary file': " + written;
             }
         }
       throw_on_any_rank(error, communicator);

@@ -40,7 +40,11 @@ namespace PeriDEAL
               break;
             }
         MPI_Comm host;
-        MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+        MPI_Comm_split_type(comm,
+                            MPI_COMM_TYPE_SHARED,
+                            0,
+                            MPI_INFO_NULL,
+                            &host);
         const unsigned int on_host =
           dealii::Utilities::MPI::n_mpi_processes(host);
         MPI_Comm_free(&host);
@@ -72,7 +76,7 @@ namespace PeriDEAL
           &solution.trilinos_vector(),
           const_cast<Epetra_MultiVector *>(
             static_cast<const Epetra_MultiVector *>(&rhs.trilinos_vector())));
-        Amesos_Mumps mumps(problem);
+        Amesos_Mumps      mumps(problem);
         const std::string size = std::to_string(matrix.m()) + " unknowns and " +
                                  std::to_string(matrix.n_nonzero_elements()) +
                                  " nonzeros";
@@ -83,8 +87,7 @@ namespace PeriDEAL
         const auto error_of = [&](const int code) {
           // MUMPS's INFO(1) where Amesos reported a failure (-1 if MUMPS
           // itself did not), the most negative over the processes.
-          const int local =
-            code == 0 ? 0 : std::min(mumps.GetINFO()[0], -1);
+          const int local  = code == 0 ? 0 : std::min(mumps.GetINFO()[0], -1);
           const int infog1 = dealii::Utilities::MPI::min(local, comm);
           if (infog1 == 0)
             return std::string();
@@ -107,19 +110,17 @@ namespace PeriDEAL
 
         throw_on_any_rank(error_of(mumps.SymbolicFactorization()), comm);
         // INFO(15): MB this process needs for the numerical phases.
-        const double needed    = mumps.GetINFO()[14];
-        const double available = available_mb_per_process(comm);
-        const bool   fits      = available <= 0 || needed <= 0.9 * available;
-        const double total_needed =
-          dealii::Utilities::MPI::sum(needed, comm);
+        const double needed       = mumps.GetINFO()[14];
+        const double available    = available_mb_per_process(comm);
+        const bool   fits         = available <= 0 || needed <= 0.9 * available;
+        const double total_needed = dealii::Utilities::MPI::sum(needed, comm);
         throw_on_any_rank(
-          fits ? std::string() :
-                 "The direct solver (MUMPS) would need an estimated " +
-                   format_number(total_needed) + " MB for its factors (" +
-                   size + "), " + format_number(needed) +
-                   " MB on a process that has " + format_number(available) +
-                   " MB available; " + fix +
-                   ".",
+          fits ?
+            std::string() :
+            "The direct solver (MUMPS) would need an estimated " +
+              format_number(total_needed) + " MB for its factors (" + size +
+              "), " + format_number(needed) + " MB on a process that has " +
+              format_number(available) + " MB available; " + fix + ".",
           comm);
         throw_on_any_rank(error_of(mumps.NumericFactorization()), comm);
         throw_on_any_rank(error_of(mumps.Solve()), comm);
@@ -307,9 +308,9 @@ namespace PeriDEAL
             solve_with_mumps(matrix, solution, rhs);
           else
             {
-              SolverControl control(1, 0);
-              TrilinosWrappers::SolverDirect::AdditionalData data(
-                false, "Amesos_Klu");
+              SolverControl                                  control(1, 0);
+              TrilinosWrappers::SolverDirect::AdditionalData data(false,
+                                                                  "Amesos_Klu");
               TrilinosWrappers::SolverDirect solver(control, data);
               try
                 {

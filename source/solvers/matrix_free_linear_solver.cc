@@ -249,15 +249,15 @@ namespace PeriDEAL
       catch (const SolverControl::NoConvergence &e)
         {
           std::ostringstream message;
-          message << "The linear solver (" << report.method
-                  << ") did not converge: after " << e.last_step
-                  << " iterations the residual is "
-                  << e.last_residual / rhs_norm
-                  << " of |b|, above 'Linear solver/Relative tolerance' = "
-                  << tolerance
-                  << ". Raise 'Maximum iterations' or 'GMRES restart length', use "
-                     "'Preconditioner = local elasticity', or 'Operator = "
-                     "assembled' with a direct solver.";
+          message
+            << "The linear solver (" << report.method
+            << ") did not converge: after " << e.last_step
+            << " iterations the residual is " << e.last_residual / rhs_norm
+            << " of |b|, above 'Linear solver/Relative tolerance' = "
+            << tolerance
+            << ". Raise 'Maximum iterations' or 'GMRES restart length', use "
+               "'Preconditioner = local elasticity', or 'Operator = "
+               "assembled' with a direct solver.";
           AssertThrow(false, ExcMessage(message.str()));
         }
       report.iterations = control.last_step();

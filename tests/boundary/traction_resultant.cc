@@ -48,8 +48,11 @@ check(const bool refine_corner)
       upper[d] = 0.7 + 0.4 * d;
       subdivisions.push_back(5 + 2 * d);
     }
-  GridGenerator::subdivided_hyper_rectangle(
-    tria, subdivisions, lower, upper, true);
+  GridGenerator::subdivided_hyper_rectangle(tria,
+                                            subdivisions,
+                                            lower,
+                                            upper,
+                                            true);
   if (refine_corner)
     {
       for (const auto &cell : tria.active_cell_iterators())

@@ -207,7 +207,7 @@ check(const std::string &model_name,
   double assembled_diff2 = 0;
   for (const auto dof : owned)
     assembled_diff2 += std::pow(ku[dof] + force[dof], 2);
-  assembled_diff2 = Utilities::MPI::sum(assembled_diff2, comm);
+  assembled_diff2                 = Utilities::MPI::sum(assembled_diff2, comm);
   const double assembled_relative = std::sqrt(assembled_diff2 / norm2);
 
   std::cout << dim << "D " << model_name << ": " << n << " nodes, "

@@ -70,8 +70,8 @@ ball_quadrature(const double                 delta,
                 const double   c = 2 * polar.point(p)[0] - 1; // cos(phi)
                 const double   s = std::sqrt(1 - c * c);
                 Tensor<1, dim> n;
-                n[0] = s * std::cos(theta);
-                n[1] = s * std::sin(theta);
+                n[0]       = s * std::cos(theta);
+                n[1]       = s * std::sin(theta);
                 n[dim - 1] = c;
                 directions.push_back(n);
                 radii.push_back(r);
@@ -100,11 +100,10 @@ check(const std::string &model_name,
   const auto model = Models::ModelRegistry<dim>::create(model_name, prm);
 
   // Classical Lame constants, from E and nu only.
-  const double mu = E / (2 * (1 + nu));
-  const double lambda =
-    (dim == 2 && plane_model == "plane stress") ?
-      E * nu / (1 - nu * nu) :
-      E * nu / ((1 + nu) * (1 - 2 * nu));
+  const double mu     = E / (2 * (1 + nu));
+  const double lambda = (dim == 2 && plane_model == "plane stress") ?
+                          E * nu / (1 - nu * nu) :
+                          E * nu / ((1 + nu) * (1 - 2 * nu));
 
   // A random field.
   std::mt19937                           rng(7 + dim);
@@ -169,10 +168,9 @@ check(const std::string &model_name,
       const Tensor<1, dim>  xi = r * n;
       const double          e  = n * u(xi);
       const double          t =
-        (model->is_state_based() ?
-           model->dilatation_constant(r, delta) * s *
-             (div_u(Tensor<1, dim>()) + div_u(xi)) :
-           0.) +
+        (model->is_state_based() ? model->dilatation_constant(r, delta) * s *
+                                     (div_u(Tensor<1, dim>()) + div_u(xi)) :
+                                   0.) +
         2 * model->extension_constant(r, delta) * s * e;
       force += weights[q] * t * n;
     }

@@ -163,13 +163,14 @@ check(const std::string &name,
       {
         for (auto e = a.begin(row); e != a.end(row); ++e)
           {
-            difference = std::max(difference,
-                                  std::abs(e->value() - b.el(row, e->column())));
-            largest    = std::max(largest, std::abs(e->value()));
+            difference =
+              std::max(difference,
+                       std::abs(e->value() - b.el(row, e->column())));
+            largest = std::max(largest, std::abs(e->value()));
           }
         for (auto e = b.begin(row); e != b.end(row); ++e)
-          difference = std::max(difference,
-                                std::abs(e->value() - a.el(row, e->column())));
+          difference =
+            std::max(difference, std::abs(e->value() - a.el(row, e->column())));
       }
     return Utilities::MPI::max(difference, comm) /
            Utilities::MPI::max(largest, comm);
@@ -187,7 +188,8 @@ check(const std::string &name,
         {
           constraints.add_line(nodes[i].dofs[c]);
           constraints.set_inhomogeneity(nodes[i].dofs[c],
-                                        0.1 * std::sin(nodes[i].location[1] + c));
+                                        0.1 *
+                                          std::sin(nodes[i].location[1] + c));
         }
   // Off-process nodes too: their columns move to the right-hand side.
   for (unsigned int i = nodes.n_owned(); i < nodes.size(); ++i)
@@ -197,7 +199,8 @@ check(const std::string &name,
         {
           constraints.add_line(nodes[i].dofs[c]);
           constraints.set_inhomogeneity(nodes[i].dofs[c],
-                                        0.1 * std::sin(nodes[i].location[1] + c));
+                                        0.1 *
+                                          std::sin(nodes[i].location[1] + c));
         }
   constraints.close();
   TrilinosWrappers::SparseMatrix reference_constrained, constrained;
@@ -213,12 +216,12 @@ check(const std::string &name,
 
   MultithreadInfo::set_thread_limit(2);
   op.assemble(assembled_2);
-  bool assembly_identical = assembled.n_nonzero_elements() ==
-                            assembled_2.n_nonzero_elements();
+  bool assembly_identical =
+    assembled.n_nonzero_elements() == assembled_2.n_nonzero_elements();
   for (const auto row : owned)
     for (auto e = assembled.begin(row); e != assembled.end(row); ++e)
-      assembly_identical = assembly_identical &&
-                           e->value() == assembled_2.el(row, e->column());
+      assembly_identical =
+        assembly_identical && e->value() == assembled_2.el(row, e->column());
   assembly_identical =
     Utilities::MPI::min(assembly_identical ? 1 : 0, comm) == 1;
 

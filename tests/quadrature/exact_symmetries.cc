@@ -229,13 +229,14 @@ check_against_reference(const std::string &name)
         perm[d] = d;
       do
         for (unsigned int signs = 0; signs < (1u << dim); ++signs)
-          worst = std::max(worst,
-                           std::abs(ball_box_intersection_measure(
-                                      Point<dim>(),
-                                      R,
-                                      transformed_box<dim>(centred, perm, signs)) -
-                                    row[3 * dim + 1]) /
-                             (box.volume() * conditioning));
+          worst =
+            std::max(worst,
+                     std::abs(ball_box_intersection_measure(
+                                Point<dim>(),
+                                R,
+                                transformed_box<dim>(centred, perm, signs)) -
+                              row[3 * dim + 1]) /
+                       (box.volume() * conditioning));
       while (std::next_permutation(perm.begin(), perm.end()));
     }
   std::cout << name << ": " << n_boxes << " reference boxes (sides >= R/100), "

@@ -72,8 +72,9 @@ namespace PeriDEAL
       /// Equilibrium with BondOperator::apply() at the free DoFs, into
       /// the run summary and the log.
       void
-      check_equilibrium(Problems::Simulator<dim>            &simulator,
-                        const TrilinosWrappers::MPI::Vector &displacement) const;
+      check_equilibrium(
+        Problems::Simulator<dim>            &simulator,
+        const TrilinosWrappers::MPI::Vector &displacement) const;
 
       Discretization::BondState<dim>      bond_state;
       Operators::BondOperator<dim>        bond_operator;

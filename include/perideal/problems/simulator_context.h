@@ -72,10 +72,10 @@ namespace PeriDEAL
         s.get_pcout() << "[" << std::setw(8) << std::fixed
                       << std::setprecision(2) << s.elapsed()
                       << " s] solved with " << solver.method << ": "
-                      << solver.iterations << " iteration(s), relative residual "
-                      << std::scientific << std::setprecision(2)
-                      << solver.relative_residual << std::defaultfloat << note
-                      << std::endl;
+                      << solver.iterations
+                      << " iteration(s), relative residual " << std::scientific
+                      << std::setprecision(2) << solver.relative_residual
+                      << std::defaultfloat << note << std::endl;
       }
 
       /// Log the equilibrium residual of the run summary, computed with
@@ -91,7 +91,7 @@ namespace PeriDEAL
                       << std::defaultfloat << std::endl;
       }
     } // namespace internal
-  } // namespace Problems
+  }   // namespace Problems
 } // namespace PeriDEAL
 
 #endif

@@ -120,17 +120,17 @@ namespace PeriDEAL
       preconditioner_name() const;
 
     private:
-      std::string  method_name     = "direct";
-      std::string  direct_package  = "MUMPS";
-      std::string  preconditioner  = "AMG";
-      bool         matrix_free     = false;
+      std::string  method_name      = "direct";
+      std::string  direct_package   = "MUMPS";
+      std::string  preconditioner   = "AMG";
+      bool         matrix_free      = false;
       unsigned int chebyshev_degree = 4;
-      unsigned int ilu_fill        = 1;
-      double       tolerance       = 1e-10;
-      unsigned int max_iterations  = 10000;
-      unsigned int restart_length  = 200;
-      unsigned int smoother_sweeps = 2;
-      double       aggregation     = 1e-4;
+      unsigned int ilu_fill         = 1;
+      double       tolerance        = 1e-10;
+      unsigned int max_iterations   = 10000;
+      unsigned int restart_length   = 200;
+      unsigned int smoother_sweeps  = 2;
+      double       aggregation      = 1e-4;
     };
   } // namespace Solvers
 } // namespace PeriDEAL
