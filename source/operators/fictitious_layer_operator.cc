@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <perideal/boundary/taylor_extrapolation.h>
+#include <perideal/discretization/lattice.h>
 #include <perideal/operators/fictitious_layer_operator.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
@@ -513,30 +514,25 @@ namespace PeriDEAL
           lower[d] = Utilities::MPI::min(lower[d], comm);
           upper[d] = Utilities::MPI::max(upper[d], comm);
         }
-      AssertThrow(h_max - h_min <= 1e-10 * h_max,
+      // Uniformity is decided in one place (Discretization::Lattice,
+      // collectively, with its tolerances); the sides are only for the
+      // message.
+      Discretization::Lattice<dim> lattice;
+      lattice.reinit(nodes);
+      AssertThrow(lattice.is_uniform(),
                   ExcMessage(
                     "The fictitious layer and the surface nodes need a "
-                    "uniform grid of equal cubes (squares in 2D), but the "
-                    "cell sides range from " +
+                    "uniform grid of equal cubes (squares in 2D) on one "
+                    "lattice, but the cell sides range from " +
                     Utilities::to_string(h_min) + " to " +
                     Utilities::to_string(h_max) +
-                    ". Fix: choose Subdivisions that give equal sides, no "
-                    "local refinement, or a mesh file of equal cubes; or set "
-                    "'Boundary treatment/Treatment = none'."));
-      s.h            = h_max;
+                    " (or a cell corner is off the lattice). Fix: choose "
+                    "Subdivisions that give equal sides, no local "
+                    "refinement, or a mesh file of equal, aligned cubes; or "
+                    "set 'Boundary treatment/Treatment = none'."));
+      s.h            = lattice.spacing();
       s.origin       = lower;
       const double h = s.h;
-      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double t =
-              (nodes[i].cell.get_boundary_points().first[d] - lower[d]) / h;
-            AssertThrow(std::abs(t - std::round(t)) < 1e-8,
-                        ExcMessage("The cells do not lie on one lattice of "
-                                   "spacing h (a cell corner is off the "
-                                   "grid). Fix: use a mesh of equal, aligned "
-                                   "cubes."));
-          }
 
       const double                              m_ratio = horizon / h;
       const Quadrature::UniformGridWeights<dim> table(algorithm, m_ratio);
