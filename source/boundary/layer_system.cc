@@ -379,6 +379,7 @@ namespace PeriDEAL
       TrilinosWrappers::PreconditionAMG  amg;
       Vector                             body_residual, body_correction;
       double                             surface_scale = 1;
+      std::vector<std::pair<unsigned int, unsigned int>> body_positions;
       if (ctx.linear_solver.preconditioner_name() == "local elasticity")
         {
           TimerOutput::Scope           inner(ctx.timer, "preconditioner setup");
@@ -412,18 +413,27 @@ namespace PeriDEAL
           surface_scale = n_dofs / Utilities::MPI::sum(diagonal_sum, comm);
           body_residual.reinit(ctx.dof_handler.locally_owned_dofs(), comm);
           body_correction.reinit(body_residual);
+          // Local positions of the body unknowns and of their DoFs, found
+          // once: the preconditioner runs every iteration.
+          for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              body_positions.emplace_back(
+                owned.index_within_set(
+                  layer_operator.unknown_index(ctx.nodes[i], c)),
+                ctx.dof_handler.locally_owned_dofs().index_within_set(
+                  ctx.nodes[i].dofs[c]));
           precondition = [&](Vector &dst, const Vector &src) {
-            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
-              for (unsigned int c = 0; c < dim; ++c)
-                body_residual[ctx.nodes[i].dofs[c]] =
-                  src[layer_operator.unknown_index(ctx.nodes[i], c)];
+            const double *in       = src.trilinos_vector()[0];
+            double       *residual = body_residual.trilinos_vector()[0];
+            for (const auto &[unknown, dof] : body_positions)
+              residual[dof] = in[unknown];
             amg.vmult(body_correction, body_residual);
             dst = src;
             dst *= surface_scale;
-            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
-              for (unsigned int c = 0; c < dim; ++c)
-                dst[layer_operator.unknown_index(ctx.nodes[i], c)] =
-                  body_correction[ctx.nodes[i].dofs[c]];
+            double       *out        = dst.trilinos_vector()[0];
+            const double *correction = body_correction.trilinos_vector()[0];
+            for (const auto &[unknown, dof] : body_positions)
+              out[unknown] = correction[dof];
           };
         }
       ctx.summary.solver =

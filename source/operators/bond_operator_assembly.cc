@@ -160,9 +160,11 @@ namespace PeriDEAL
               box_delta.push_back(delta);
             }
         }
-      AssertThrow(n_keys < std::numeric_limits<std::uint32_t>::max(),
-                  ExcMessage("Too many nodes on one process for the "
-                             "assembly's 32-bit row keys."));
+      throw_on_any_rank(n_keys < std::numeric_limits<std::uint32_t>::max() ?
+                          std::string() :
+                          "Too many nodes on one process for the assembly's "
+                          "32-bit row keys: use more processes.",
+                        comm);
       const auto node_of_key = [&](const unsigned int   i,
                                    const std::ptrdiff_t key) -> unsigned int {
         if (!use_lattice)
@@ -485,6 +487,7 @@ namespace PeriDEAL
       // the column lists of a block of rows are formed and sorted in
       // parallel, then inserted in order.
       Epetra_CrsGraph graph(Copy, row_map, column_map, row_length.data(), true);
+      int             insert_error = 0; // the first failure, shared below
       {
         constexpr unsigned int        block_nodes = 1024;
         std::vector<std::vector<int>> columns(block_nodes);
@@ -534,25 +537,34 @@ namespace PeriDEAL
                     error = graph.InsertMyIndices(row_of_node[i] + r,
                                                   columns[i - first].size(),
                                                   columns[i - first].data());
-                  AssertThrow(error == 0,
-                              ExcMessage("Epetra_CrsGraph::InsertMyIndices "
-                                         "failed with error " +
-                                         std::to_string(error)));
+                  if (error != 0 && insert_error == 0)
+                    insert_error = error;
                 }
           }
       }
-      AssertThrow(graph.FillComplete(row_map, row_map) == 0,
-                  ExcMessage("Epetra_CrsGraph::FillComplete failed."));
+      // Epetra's calls return local error codes: shared before anyone
+      // throws (FillComplete itself is collective).
+      const auto check_epetra = [&](const int error, const std::string &call) {
+        throw_on_any_rank(error == 0 ? std::string() :
+                                       "BondOperator::assemble: " + call +
+                                         " failed with error " +
+                                         std::to_string(error) + ".",
+                          comm);
+      };
+      check_epetra(insert_error, "Epetra_CrsGraph::InsertMyIndices");
+      check_epetra(graph.FillComplete(row_map, row_map),
+                   "Epetra_CrsGraph::FillComplete");
       {
         // deal.II's matrix shares the graph (Epetra graphs are reference
         // counted); the layout's own value array lives only here.
         Epetra_CrsMatrix layout(Copy, graph);
-        AssertThrow(layout.FillComplete(row_map, row_map) == 0,
-                    ExcMessage("Epetra_CrsMatrix::FillComplete failed."));
+        check_epetra(layout.FillComplete(row_map, row_map),
+                     "Epetra_CrsMatrix::FillComplete");
         matrix.reinit(layout, false);
       }
       const Epetra_CrsMatrix &epetra = matrix.trilinos_matrix();
-      AssertThrow(epetra.ColMap().SameAs(column_map), ExcInternalError());
+      check_epetra(epetra.ColMap().SameAs(column_map) ? 0 : -1,
+                   "the column map of the matrix");
 
       // Values, threaded over rows, each written in place.
       std::vector<double> rhs_add(constraints != nullptr ? owned.n_elements() :

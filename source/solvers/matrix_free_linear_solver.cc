@@ -12,6 +12,7 @@
 #include <perideal/solvers/linear_solver.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace PeriDEAL
@@ -22,34 +23,75 @@ namespace PeriDEAL
     {
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
-      /// Run the selected Krylov method with @p precondition.
-      template <typename Operator, typename Preconditioner>
+      /// Run the selected Krylov method with @p precondition. GMRES is
+      /// right-preconditioned, so that its stopping test sees the true
+      /// residual, not the preconditioned one.
+      template <typename Vector, typename Operator, typename Preconditioner>
       void
       run_krylov(const std::string    &method,
                  const unsigned int    restart_length,
                  SolverControl        &control,
                  const Operator       &op,
-                 VectorType           &x,
-                 const VectorType     &b,
+                 Vector               &x,
+                 const Vector         &b,
                  const Preconditioner &precondition)
       {
         if (method == "CG")
           {
-            SolverCG<VectorType> solver(control);
+            SolverCG<Vector> solver(control);
             solver.solve(op, x, b, precondition);
           }
         else if (method == "GMRES")
           {
-            SolverGMRES<VectorType> solver(
+            SolverGMRES<Vector> solver(
               control,
-              typename SolverGMRES<VectorType>::AdditionalData(restart_length));
+              typename SolverGMRES<Vector>::AdditionalData(restart_length,
+                                                           true));
             solver.solve(op, x, b, precondition);
           }
         else
           {
-            SolverBicgstab<VectorType> solver(control);
+            SolverBicgstab<Vector> solver(control);
             solver.solve(op, x, b, precondition);
           }
+      }
+
+      /// Stop on a right-hand side with NaN or Inf.
+      void
+      check_finite_rhs(const double rhs_norm)
+      {
+        AssertThrow(std::isfinite(rhs_norm),
+                    ExcMessage("The right-hand side of the linear system "
+                               "holds non-finite values (NaN or Inf): check "
+                               "the body force, traction and Dirichlet "
+                               "expressions."));
+      }
+
+      /// Stop on a Krylov solve that did not converge, with @p fix.
+      [[noreturn]] void
+      throw_no_convergence(const std::string                  &method,
+                           const SolverControl::NoConvergence &e,
+                           const double                        rhs_norm,
+                           const double                        tolerance,
+                           const std::string                  &fix)
+      {
+        std::ostringstream message;
+        message << "The linear solver (" << method
+                << ") did not converge: after " << e.last_step
+                << " iterations the residual is " << e.last_residual / rhs_norm
+                << " of |b|, above 'Linear solver/Relative tolerance' = "
+                << tolerance << ". " << fix;
+        AssertThrow(false, ExcMessage(message.str()));
+        std::abort(); // not reached
+      }
+
+      /// Stop on a solution with NaN or Inf (seen in its residual).
+      void
+      check_finite_residual(const double relative_residual)
+      {
+        AssertThrow(std::isfinite(relative_residual),
+                    ExcMessage("The linear solve produced non-finite values "
+                               "(NaN or Inf)."));
       }
     } // namespace
 
@@ -68,11 +110,7 @@ namespace PeriDEAL
       report.method =
         method_name + " + " + preconditioner + " (matrix-free operator)";
       const double rhs_norm = rhs.l2_norm();
-      AssertThrow(std::isfinite(rhs_norm),
-                  ExcMessage("The right-hand side of the linear system "
-                             "holds non-finite values (NaN or Inf): check "
-                             "the body force, traction and Dirichlet "
-                             "expressions."));
+      check_finite_rhs(rhs_norm);
       if (rhs_norm == 0)
         {
           solution = 0;
@@ -149,17 +187,14 @@ namespace PeriDEAL
         }
       catch (const SolverControl::NoConvergence &e)
         {
-          std::ostringstream message;
-          message << "The linear solver (" << report.method
-                  << ") did not converge: after " << e.last_step
-                  << " iterations the residual is "
-                  << e.last_residual / rhs_norm
-                  << " of |b|, above 'Linear solver/Relative tolerance' = "
-                  << tolerance
-                  << ". Raise 'Maximum iterations', use 'Preconditioner = "
-                     "local elasticity', or check that the Dirichlet "
-                     "conditions fix every rigid motion.";
-          AssertThrow(false, ExcMessage(message.str()));
+          throw_no_convergence(report.method,
+                               e,
+                               rhs_norm,
+                               tolerance,
+                               "Raise 'Maximum iterations', use "
+                               "'Preconditioner = local elasticity', or check "
+                               "that the Dirichlet conditions fix every rigid "
+                               "motion.");
         }
       report.iterations = control.last_step();
 
@@ -169,9 +204,7 @@ namespace PeriDEAL
       op.vmult(residual, solution);
       residual.sadd(-1., 1., rhs);
       report.relative_residual = residual.l2_norm() / rhs_norm;
-      AssertThrow(std::isfinite(report.relative_residual),
-                  ExcMessage("The linear solve produced non-finite values "
-                             "(NaN or Inf)."));
+      check_finite_residual(report.relative_residual);
       report.seconds = timer.wall_time();
       return report;
     }
@@ -211,11 +244,7 @@ namespace PeriDEAL
                                   "this system is not symmetric and has no "
                                   "matrix; use GMRES or BiCGStab"));
       const double rhs_norm = rhs.l2_norm();
-      AssertThrow(std::isfinite(rhs_norm),
-                  ExcMessage("The right-hand side of the linear system "
-                             "holds non-finite values (NaN or Inf): check "
-                             "the body force, traction and Dirichlet "
-                             "expressions."));
+      check_finite_rhs(rhs_norm);
       solution = 0;
       if (rhs_norm == 0)
         return report;
@@ -224,50 +253,40 @@ namespace PeriDEAL
       SolverControl          control(max_iterations, tolerance * rhs_norm);
       try
         {
-          if (method_name == "GMRES")
-            {
-              // Right preconditioning: the stopping test sees the true
-              // residual, not the preconditioned one.
-              SolverGMRES<Vector> solver(
-                control,
-                typename SolverGMRES<Vector>::AdditionalData(restart_length,
-                                                             true));
-              if (precondition)
-                solver.solve(A, solution, rhs, P);
-              else
-                solver.solve(A, solution, rhs, PreconditionIdentity());
-            }
+          if (precondition)
+            run_krylov(method_name,
+                       restart_length,
+                       control,
+                       A,
+                       solution,
+                       rhs,
+                       P);
           else
-            {
-              SolverBicgstab<Vector> solver(control);
-              if (precondition)
-                solver.solve(A, solution, rhs, P);
-              else
-                solver.solve(A, solution, rhs, PreconditionIdentity());
-            }
+            run_krylov(method_name,
+                       restart_length,
+                       control,
+                       A,
+                       solution,
+                       rhs,
+                       PreconditionIdentity());
         }
       catch (const SolverControl::NoConvergence &e)
         {
-          std::ostringstream message;
-          message
-            << "The linear solver (" << report.method
-            << ") did not converge: after " << e.last_step
-            << " iterations the residual is " << e.last_residual / rhs_norm
-            << " of |b|, above 'Linear solver/Relative tolerance' = "
-            << tolerance
-            << ". Raise 'Maximum iterations' or 'GMRES restart length', use "
-               "'Preconditioner = local elasticity', or 'Operator = "
-               "assembled' with a direct solver.";
-          AssertThrow(false, ExcMessage(message.str()));
+          throw_no_convergence(report.method,
+                               e,
+                               rhs_norm,
+                               tolerance,
+                               "Raise 'Maximum iterations' or 'GMRES restart "
+                               "length', use 'Preconditioner = local "
+                               "elasticity', or 'Operator = assembled' with a "
+                               "direct solver.");
         }
       report.iterations = control.last_step();
       Vector residual(rhs);
       op(residual, solution);
       residual.sadd(-1., 1., rhs);
       report.relative_residual = residual.l2_norm() / rhs_norm;
-      AssertThrow(std::isfinite(report.relative_residual),
-                  ExcMessage("The linear solve produced non-finite values "
-                             "(NaN or Inf)."));
+      check_finite_residual(report.relative_residual);
       report.seconds = timer.wall_time();
       return report;
     }

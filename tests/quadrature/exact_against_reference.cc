@@ -14,6 +14,8 @@
 #include <perideal/quadrature/exact_partial_volume.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
+#include "reference_data.h"
+
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -25,33 +27,6 @@
 
 using namespace dealii;
 using namespace PeriDEAL::Quadrature;
-
-// Rows of a CSV file with a header line, as numbers.
-std::vector<std::vector<double>>
-read_csv(const std::string &name, const unsigned int n_columns)
-{
-  const std::string file =
-    std::string(PERIDEAL_TEST_DATA_DIR) + "/quadrature/reference/" + name;
-  std::ifstream in(file);
-  AssertThrow(in, ExcMessage("Cannot open the reference file " + file));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line))
-    {
-      if (line.empty())
-        continue;
-      std::vector<double> row;
-      std::stringstream   s(line);
-      std::string         field;
-      while (std::getline(s, field, ','))
-        row.push_back(std::stod(field));
-      AssertThrow(row.size() == n_columns,
-                  ExcMessage("Bad row in " + file + ": " + line));
-      rows.push_back(row);
-    }
-  return rows;
-}
 
 std::string
 verdict(const bool ok)

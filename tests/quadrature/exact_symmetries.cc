@@ -20,6 +20,8 @@
 
 #include <perideal/quadrature/ball_box_intersection.h>
 
+#include "reference_data.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -186,23 +188,10 @@ template <int dim>
 void
 check_against_reference(const std::string &name)
 {
-  const std::string file =
-    std::string(PERIDEAL_TEST_DATA_DIR) + "/quadrature/reference/" + name;
-  std::ifstream in(file);
-  AssertThrow(in, ExcMessage("Cannot open the reference file " + file));
-  std::string line;
-  std::getline(in, line);
   double       worst   = 0;
   unsigned int n_boxes = 0;
-  while (std::getline(in, line))
+  for (const auto &row : read_csv(name, 3 * dim + 2))
     {
-      std::vector<double> row;
-      std::stringstream   fields(line);
-      std::string         field;
-      while (std::getline(fields, field, ','))
-        row.push_back(std::stod(field));
-      if (row.size() != 3 * dim + 2)
-        continue;
       Point<dim> centre, lower, upper;
       for (unsigned int d = 0; d < dim; ++d)
         {
