@@ -3,6 +3,7 @@
 #include <perideal/discretization/bond_state.h>
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 namespace PeriDEAL
@@ -23,6 +24,7 @@ namespace PeriDEAL
       bits.assign((first[n] + 63) / 64, 0);
       n_broken_of.assign(n, 0);
       pending.clear();
+      local.clear();
     }
 
 
@@ -49,6 +51,28 @@ namespace PeriDEAL
         return;
       pending.emplace_back((*nodes)[i].dofs[0],
                            (*nodes)[neighbor(i, k)].dofs[0]);
+    }
+
+
+    template <int dim>
+    double
+    BondState<dim>::damage(const unsigned int i) const
+    {
+      if (n_broken_of[i] == 0)
+        return 0;
+      double       total = 0, broken = 0;
+      const bool   full  = lists->has_full_stencil(i);
+      const double cell  = std::pow(lists->lattice().spacing(), dim);
+      const auto   bonds = full ? ArrayView<const Bond>() : lists->bonds(i);
+      for (unsigned int k = 0; k < first[i + 1] - first[i]; ++k)
+        {
+          const double w =
+            full ? lists->stencil()[k].beta * cell : bonds[k].weight;
+          total += w;
+          if (is_broken(i, k))
+            broken += w;
+        }
+      return total > 0 ? broken / total : 0.;
     }
 
 
@@ -103,10 +127,13 @@ namespace PeriDEAL
       if (all.empty())
         return 0;
 
-      std::unordered_map<std::uint64_t, unsigned int> local;
-      local.reserve(nodes->size());
-      for (unsigned int i = 0; i < nodes->size(); ++i)
-        local.emplace((*nodes)[i].dofs[0], i);
+      // Global key -> local node, built once (the first time bonds break).
+      if (local.empty())
+        {
+          local.reserve(nodes->size());
+          for (unsigned int i = 0; i < nodes->size(); ++i)
+            local.emplace((*nodes)[i].dofs[0], i);
+        }
       auto break_here = [&](const std::uint64_t a, const std::uint64_t b) {
         const auto ia = local.find(a), ib = local.find(b);
         if (ia == local.end() || ib == local.end() ||

@@ -82,11 +82,48 @@ namespace PeriDEAL
       double
       extension_constant(const double r, const double horizon) const override
       {
+        return 0.5 * micromodulus(horizon) * this->influence(r, horizon) / r;
+      }
+
+      double
+      dilatation_energy_modulus() const override
+      {
+        return 0;
+      }
+
+      /// The micromodulus c of the pair force c omega s.
+      double
+      micromodulus(const double horizon) const
+      {
         const double mu = this->constants.shear;
-        const double c =
-          dim == 3 ? 15 * mu / (2 * M_PI * std::pow(horizon, 4) * moment) :
-                     8 * mu / (M_PI * std::pow(horizon, 3) * moment);
-        return 0.5 * c * this->influence(r, horizon) / r;
+        return dim == 3 ? 15 * mu / (2 * M_PI * std::pow(horizon, 4) * moment) :
+                          8 * mu / (M_PI * std::pow(horizon, 3) * moment);
+      }
+
+    protected:
+      /**
+       * The energy of the bonds that cross a unit area of a plane crack,
+       * each broken at stretch s0 (bond energy \f$c\,\omega s_0^2 r/2\f$ per
+       * pair of unit volumes), equals G0:
+       * \f$G_0 = \tfrac{\pi}{2} c\, s_0^2 \delta^5 M_4\f$ in 3D and
+       * \f$G_0 = c\, s_0^2 \delta^4 M_3\f$ in 2D (per unit thickness),
+       * \f$M_k = \int_0^1\omega(s) s^k ds\f$. Constant influence, 3D:
+       * \f$s_0 = \sqrt{5G_0/(9K\delta)}\f$; plane stress:
+       * \f$\sqrt{4\pi G_0/(9E\delta)}\f$ (constant),
+       * \f$\sqrt{5\pi G_0/(9E\delta)}\f$ (conical), as in the paper's
+       * Eq. 20. Derivation: doc/explicit-dynamics.md.
+       */
+      double
+      critical_stretch_from_fracture_energy(const double G0,
+                                            const double horizon) const override
+      {
+        const double c = micromodulus(horizon);
+        return dim == 3 ?
+                 std::sqrt(
+                   2 * G0 /
+                   (M_PI * c * std::pow(horizon, 5) * this->omega->moment(4))) :
+                 std::sqrt(G0 /
+                           (c * std::pow(horizon, 4) * this->omega->moment(3)));
       }
 
       double

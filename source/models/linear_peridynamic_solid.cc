@@ -59,6 +59,12 @@ namespace PeriDEAL
       }
 
       double
+      dilatation_energy_modulus() const override
+      {
+        return c_bulk / dim;
+      }
+
+      double
       dilatation_constant(const double r, const double horizon) const override
       {
         return c_bulk * this->influence(r, horizon) * r;

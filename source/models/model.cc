@@ -3,6 +3,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/models/model.h>
 
+#include <limits>
 #include <sstream>
 
 namespace PeriDEAL
@@ -126,6 +127,26 @@ namespace PeriDEAL
                         Patterns::Selection(
                           InfluenceFunctionRegistry::pattern_string()),
                         "The influence function omega(|xi|/delta).");
+      prm.declare_entry("Density",
+                        "1",
+                        Patterns::Double(0),
+                        "Mass density rho (kg/m^3, > 0); used by the "
+                        "explicit dynamics problem type.");
+      prm.declare_entry("Critical stretch",
+                        "0",
+                        Patterns::Double(0),
+                        "Bond failure: a bond whose stretch |y_j - y_i| / "
+                        "|x_j - x_i| - 1 exceeds this value breaks for good "
+                        "(explicit dynamics). 0: no failure, unless "
+                        "'Fracture energy' is given (give at most one).");
+      prm.declare_entry("Fracture energy",
+                        "0",
+                        Patterns::Double(0),
+                        "Bond failure from the critical energy release rate "
+                        "G0 (J/m^2): the critical stretch that dissipates G0 "
+                        "per unit crack area (bond-based PMB: Silling & "
+                        "Askari 2005, derived for every influence function "
+                        "in doc/explicit-dynamics.md). 0: not used.");
     }
 
 
@@ -135,6 +156,73 @@ namespace PeriDEAL
     {
       constants.parse_parameters(prm);
       omega = InfluenceFunctionRegistry::create(prm.get("Influence function"));
+      mass_density           = prm.get_double("Density");
+      given_critical_stretch = prm.get_double("Critical stretch");
+      fracture_energy        = prm.get_double("Fracture energy");
+      AssertThrow(mass_density > 0,
+                  ExcInvalidInput("Density",
+                                  prm.get("Density"),
+                                  "give a mass density > 0"));
+      AssertThrow(given_critical_stretch == 0 || fracture_energy == 0,
+                  ExcInvalidInput("Fracture energy",
+                                  prm.get("Fracture energy"),
+                                  "give either 'Critical stretch' or "
+                                  "'Fracture energy', not both (the other "
+                                  "one = 0)"));
+    }
+
+
+    template <int dim>
+    double
+    Model<dim>::critical_stretch(const double) const
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+
+
+    template <int dim>
+    double
+    Model<dim>::density() const
+    {
+      return 1;
+    }
+
+
+    template <int dim>
+    double
+    IsotropicModel<dim>::critical_stretch(const double horizon) const
+    {
+      if (given_critical_stretch > 0)
+        return given_critical_stretch;
+      if (fracture_energy > 0)
+        return critical_stretch_from_fracture_energy(fracture_energy, horizon);
+      return std::numeric_limits<double>::infinity();
+    }
+
+
+    template <int dim>
+    double
+    IsotropicModel<dim>::critical_stretch_from_fracture_energy(
+      const double G0,
+      const double) const
+    {
+      std::ostringstream value;
+      value << G0;
+      AssertThrow(false,
+                  ExcInvalidInput("Fracture energy",
+                                  value.str(),
+                                  "this model has no relation between "
+                                  "fracture energy and critical stretch; "
+                                  "give 'Critical stretch' instead"));
+      return 0;
+    }
+
+
+    template <int dim>
+    double
+    IsotropicModel<dim>::density() const
+    {
+      return mass_density;
     }
 
 

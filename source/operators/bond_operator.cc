@@ -126,7 +126,12 @@ namespace PeriDEAL
               const double w = o.beta * volume;
               stencil.slot_offset.push_back(lattice.slot_offset(o.offset));
               for (unsigned int d = 0; d < dim; ++d)
-                stencil.n[d].push_back(xi[d] / r);
+                {
+                  stencil.n[d].push_back(xi[d] / r);
+                  stencil.xi[d].push_back(xi[d]);
+                }
+              stencil.r.push_back(r);
+              stencil.inv_r.push_back(1. / r);
               stencil.g.push_back(
                 state_based ? dim / m0 * model->influence(r, horizon) * r * w :
                               0.);
@@ -158,6 +163,12 @@ namespace PeriDEAL
           s_slot[slot[i]] = model->node_factor(m[i]);
         else if (!state_based)
           s_slot[slot[i]] = model->node_factor(0.);
+
+      // No failure until set_kinematics() says otherwise.
+      finite       = false;
+      with_failure = false;
+      critical_stretch.clear();
+      s0_slot.resize_fast(0);
 
       // State-based forces need every neighbour's dilatation.
       if (state_based)
@@ -303,6 +314,7 @@ namespace PeriDEAL
                   const double         r  = xi.norm();
                   ListBond             bond;
                   bond.neighbor_slot = slot[j];
+                  bond.r             = r;
                   for (unsigned int d = 0; d < dim; ++d)
                     bond.n[d] = xi[d] / r;
                   bond.g = state_based ?
@@ -554,9 +566,24 @@ namespace PeriDEAL
                              VectorType       &force) const
     {
       copy_in(displacement);
-      if (state_based)
-        dilatation_pass();
-      force_pass();
+      if (finite)
+        {
+          if (state_based)
+            nonlinear_dilatation_pass<true>();
+          nonlinear_force_pass<true>();
+        }
+      else if (with_failure)
+        {
+          if (state_based)
+            nonlinear_dilatation_pass<false>();
+          nonlinear_force_pass<false>();
+        }
+      else
+        {
+          if (state_based)
+            dilatation_pass();
+          force_pass();
+        }
       double *values = force.begin();
       parallel::apply_to_subranges(
         0u,
@@ -579,7 +606,12 @@ namespace PeriDEAL
       if (!state_based)
         return;
       copy_in(displacement);
-      dilatation_pass();
+      if (finite)
+        nonlinear_dilatation_pass<true>();
+      else if (with_failure)
+        nonlinear_dilatation_pass<false>();
+      else
+        dilatation_pass();
       for (unsigned int i = 0; i < nodes->size(); ++i)
         if (lists->has_list(i))
           dilatation[i] = t_slot[slot[i]] / s_slot[slot[i]];
@@ -753,7 +785,8 @@ namespace PeriDEAL
         list_bonds.capacity() * sizeof(ListBond) +
         list_stencil_index.capacity() * sizeof(std::uint16_t) +
         list_theta_scale.capacity() * sizeof(double) +
-        (2 * dim + 2) * n_slots * sizeof(double);
+        (2 * dim + 2) * n_slots * sizeof(double) +
+        s0_slot.size() * sizeof(double);
       return bytes;
     }
 

@@ -5,6 +5,7 @@
 #include <perideal/discretization/node_set.h>
 
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -46,6 +47,14 @@ namespace PeriDEAL
       {
         return n_broken_of[i] > 0;
       }
+
+      /**
+       * The damage of node @p i (hybrid-collocation paper, Eq. 21, with the
+       * quadrature weights): \f$\varphi_i = 1 - \sum_{j\ \mathrm{intact}}
+       * w_{ij} / \sum_j w_{ij}\f$; 0 for a node without bonds.
+       */
+      double
+      damage(const unsigned int i) const;
 
       /// Number of broken bonds of node @p i.
       unsigned int
@@ -95,6 +104,7 @@ namespace PeriDEAL
       std::vector<std::uint64_t>                           bits;
       std::vector<unsigned int>                            n_broken_of;
       std::vector<std::pair<std::uint64_t, std::uint64_t>> pending;
+      std::unordered_map<std::uint64_t, unsigned int>      local;
 
       /// Set the bit of bond k of node i; whether it was intact.
       bool

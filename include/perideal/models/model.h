@@ -117,6 +117,37 @@ namespace PeriDEAL
         return false;
       }
 
+      /**
+       * The elastic energy of node i per unit volume,
+       * \f[
+       *   W_i = \tfrac12\, s(m_i) \sum_j \beta(r_{ij})\, e_{ij}^2\, w_{ij}
+       *       + \tfrac12\,\lambda_\theta\,\theta_i^2 ,
+       * \f]
+       * with the kernel's \f$\beta, s\f$ (dilatation_constant()) and
+       * \f$\lambda_\theta\f$ = dilatation_energy_modulus(), is the
+       * potential of the kernel's force state: \f$\partial W_i/\partial
+       * e_{ij} = t_{ij}/w_{ij}\f$ for any set of intact bonds (the sums run
+       * over them, \f$m_i\f$ over all bonds). Bond-based:
+       * \f$\lambda_\theta = 0\f$; LPS: \f$\lambda_\theta = c_K/d\f$,
+       * i.e. \f$K - 5\mu/3\f$ in 3D and \f$\kappa - 2\mu\f$ in 2D
+       * (doc/explicit-dynamics.md).
+       */
+      virtual double
+      dilatation_energy_modulus() const = 0;
+
+      /**
+       * The critical stretch \f$s_0\f$ of bond failure for horizon
+       * @p horizon: a bond whose stretch \f$|y_j - y_i|/|x_j - x_i| - 1\f$
+       * reaches it breaks for good. Infinite (the default) when the model has
+       * no failure criterion.
+       */
+      virtual double
+      critical_stretch(const double horizon) const;
+
+      /// Mass density \f$\rho\f$ (for dynamics).
+      virtual double
+      density() const;
+
       static std::string
       family_name();
     };
@@ -180,6 +211,17 @@ namespace PeriDEAL
       double
       influence(const double r, const double horizon) const override;
 
+      /**
+       * 'Critical stretch' when given; otherwise from 'Fracture energy'
+       * through critical_stretch_from_fracture_energy(); infinite when
+       * neither is given.
+       */
+      double
+      critical_stretch(const double horizon) const override;
+
+      double
+      density() const override;
+
       double
       bulk_modulus() const override;
 
@@ -190,8 +232,21 @@ namespace PeriDEAL
       plane_stress() const override;
 
     protected:
+      /**
+       * The critical stretch that dissipates the fracture energy @p G0 (per
+       * unit crack area) when a crack separates the body (Silling & Askari
+       * 2005); models without such a relation throw ExcInvalidInput naming
+       * 'Fracture energy'.
+       */
+      virtual double
+      critical_stretch_from_fracture_energy(const double G0,
+                                            const double horizon) const;
+
       ElasticConstants                   constants;
       std::unique_ptr<InfluenceFunction> omega;
+      double                             given_critical_stretch = 0;
+      double                             fracture_energy        = 0;
+      double                             mass_density           = 1;
     };
   } // namespace Models
 

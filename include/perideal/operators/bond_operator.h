@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace dealii
@@ -90,6 +91,65 @@ namespace PeriDEAL
              const Models::Model<dim>                &model,
              const double                             horizon,
              const Discretization::BondState<dim>    *bond_state = nullptr);
+
+      /**
+       * Kinematics and bond failure of apply() (the defaults: linearised
+       * kinematics, no failure, are the quasi-static operator).
+       *
+       * With @p finite_deformation the bond extension is
+       * \f$e_{ij} = |\xi + \eta| - |\xi|\f$ and the pair force acts along
+       * the deformed bond \f$(\xi + \eta)/|\xi + \eta|\f$
+       * (\f$\eta = u_j - u_i\f$; hybrid-collocation paper Eq. 15 for PMB, the
+       * same kernel constants for LPS), otherwise \f$e_{ij} = n\cdot\eta\f$
+       * along n. With @p critical_stretch (one value per node of the set,
+       * +inf where bonds must not fail; empty: no failure) a bond whose
+       * stretch \f$e_{ij}/|\xi|\f$ reaches
+       * \f$\min(s_{0,i}, s_{0,j})\f$ is left out of the dilatation and the
+       * forces of that evaluation on every process that evaluates it (the
+       * stretch of (i, j) and (j, i) is the same to the bit), and recorded;
+       * commit_broken_bonds() then breaks it for good.
+       */
+      void
+      set_kinematics(const bool                 finite_deformation,
+                     const std::vector<double> &critical_stretch = {});
+
+      /**
+       * Break the bonds that apply() found over their critical stretch in
+       * @p state (the state given to reinit()), synchronise it over the
+       * processes and re-sort the nodes between stencil and lists.
+       * Collective. Returns the number of bond pairs newly broken on all
+       * processes together.
+       */
+      std::size_t
+      commit_broken_bonds(Discretization::BondState<dim> &state);
+
+      /**
+       * The elastic energy \f$\sum_i V_i W_i\f$ of the owned nodes of all
+       * processes (Models::Model::dilatation_energy_modulus() gives \f$W_i\f$),
+       * with the kinematics of apply() and the intact bonds. Collective.
+       */
+      double
+      elastic_energy(const VectorType &displacement) const;
+
+      /**
+       * The largest eigenvalue of \f$M^{-1}K\f$ (K the linearised stiffness
+       * of the intact bonds, M the lumped mass \f$\rho V_i\f$), estimated
+       * by @p n_iterations steps of the power method from a fixed start
+       * vector. Collective.
+       */
+      double
+      estimate_largest_eigenvalue(const double       density,
+                                  const unsigned int n_iterations) const;
+
+      /**
+       * An upper bound of the largest eigenvalue of \f$M^{-1}K\f$ (same K
+       * and M as estimate_largest_eigenvalue()) by Gershgorin's theorem,
+       * each entry of K bounded term by term from the kernel (derivation in
+       * doc/explicit-dynamics.md). For bond-based models it is the bound of
+       * Silling & Askari (2005) with the direction cosines kept. Collective.
+       */
+      double
+      gershgorin_eigenvalue_bound(const double density) const;
 
       /**
        * Re-sort nodes between the stencil and the lists after bonds broke
@@ -182,6 +242,9 @@ namespace PeriDEAL
       static constexpr unsigned int chunk_size = 64;
 
     private:
+      /// A bond that reached its critical stretch: local node indices.
+      using ExceededBond = std::pair<unsigned int, unsigned int>;
+
       /// A run of consecutive slots of bulk nodes.
       struct Chunk
       {
@@ -194,6 +257,7 @@ namespace PeriDEAL
       {
         unsigned int neighbor_slot;
         double       n[dim];
+        double       r;
         double       g; // (d / m_i) omega r w
         double       a; // V_i w alpha(r)
         double       b; // V_i w beta(r)
@@ -203,18 +267,21 @@ namespace PeriDEAL
       struct Stencil
       {
         std::vector<std::ptrdiff_t>          slot_offset;
-        std::array<std::vector<double>, dim> n;
+        std::array<std::vector<double>, dim> n, xi;
+        std::vector<double>                  r, inv_r;
         std::vector<double>                  g, a, b;
         double                               node_factor = 0;
       };
 
-      const Discretization::NodeSet<dim>      *nodes       = nullptr;
-      const Discretization::NeighborList<dim> *lists       = nullptr;
-      const Models::Model<dim>                *model       = nullptr;
-      const Discretization::BondState<dim>    *bond_state  = nullptr;
-      double                                   horizon     = 0;
-      bool                                     state_based = true;
-      bool                                     use_lattice = false;
+      const Discretization::NodeSet<dim>      *nodes        = nullptr;
+      const Discretization::NeighborList<dim> *lists        = nullptr;
+      const Models::Model<dim>                *model        = nullptr;
+      const Discretization::BondState<dim>    *bond_state   = nullptr;
+      double                                   horizon      = 0;
+      bool                                     state_based  = true;
+      bool                                     use_lattice  = false;
+      bool                                     finite       = false;
+      bool                                     with_failure = false;
 
       std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
       std::vector<unsigned int>                          vector_index;
@@ -237,10 +304,17 @@ namespace PeriDEAL
       unsigned int               n_owned_stencil = 0;
       std::size_t                bond_visits     = 0;
 
-      // Scratch: displacement, force, s * theta and s per slot.
+      // Scratch: displacement, force, s * theta and s per slot; the
+      // critical stretch per slot (with failure).
       mutable std::array<AlignedVector<double>, dim> u_slot, f_slot;
       mutable AlignedVector<double>                  t_slot;
       AlignedVector<double>                          s_slot;
+      AlignedVector<double>                          s0_slot;
+      std::vector<double>                            critical_stretch;
+      // Bonds over their critical stretch, until committed (rare events:
+      // a lock per record).
+      mutable std::vector<ExceededBond> exceeded;
+      mutable std::mutex                exceeded_mutex;
 
       /// Whether node i is evaluated with the shared stencil.
       bool
@@ -281,7 +355,32 @@ namespace PeriDEAL
 
       void
       force_pass() const;
+
+      /// The passes with finite kinematics and/or failure
+      /// (bond_operator_fracture.cc).
+      template <bool finite_kinematics>
+      void
+      nonlinear_dilatation_pass() const;
+
+      template <bool finite_kinematics>
+      void
+      nonlinear_force_pass() const;
+
+      /// Record the bond from node @p i to node @p j as over its critical
+      /// stretch (thread-safe; called only when a bond fails).
+      void
+      record_exceeded(const unsigned int i, const unsigned int j) const;
     };
+
+
+    template <int dim>
+    inline unsigned int
+    BondOperator<dim>::node_of_slot(const std::size_t s) const
+    {
+      return use_lattice ?
+               static_cast<unsigned int>(lists->lattice().node_at_slot(s)) :
+               static_cast<unsigned int>(s);
+    }
   } // namespace Operators
 } // namespace PeriDEAL
 

@@ -1,0 +1,526 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+
+#include <perideal/operators/bond_operator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+// The passes of BondOperator with finite kinematics and bond failure
+// (explicit dynamics and fracture), compiled with the bond-loop flags.
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    namespace
+    {
+      constexpr unsigned int chunk_grain = 4;
+      constexpr unsigned int node_grain  = 256;
+    } // namespace
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::set_kinematics(const bool finite_deformation,
+                                      const std::vector<double> &stretch)
+    {
+      const unsigned int n    = nodes->size();
+      const MPI_Comm     comm = nodes->get_communicator();
+      AssertThrow(Utilities::MPI::min((stretch.empty() || stretch.size() == n) ?
+                                        1 :
+                                        0,
+                                      comm) == 1,
+                  ExcMessage("BondOperator::set_kinematics: one critical "
+                             "stretch per node of the set."));
+      finite           = finite_deformation;
+      critical_stretch = stretch;
+      with_failure     = false;
+      for (const double s0 : critical_stretch)
+        with_failure = with_failure || std::isfinite(s0);
+      with_failure = Utilities::MPI::max(with_failure ? 1 : 0, comm) == 1;
+      s0_slot.resize_fast(0);
+      if (finite || with_failure)
+        {
+          s0_slot.resize_fast(n_slots);
+          std::fill(s0_slot.begin(),
+                    s0_slot.end(),
+                    std::numeric_limits<double>::infinity());
+          if (with_failure)
+            for (unsigned int i = 0; i < n; ++i)
+              s0_slot[slot[i]] = critical_stretch[i];
+        }
+      std::lock_guard<std::mutex> lock(exceeded_mutex);
+      exceeded.clear();
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::record_exceeded(const unsigned int i,
+                                       const unsigned int j) const
+    {
+      std::lock_guard<std::mutex> lock(exceeded_mutex);
+      exceeded.emplace_back(i, j);
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::commit_broken_bonds(
+      Discretization::BondState<dim> &state)
+    {
+      AssertThrow(&state == bond_state,
+                  ExcMessage("commit_broken_bonds() needs the bond state "
+                             "given to reinit()."));
+      {
+        std::lock_guard<std::mutex> lock(exceeded_mutex);
+        std::sort(exceeded.begin(), exceeded.end());
+        exceeded.erase(std::unique(exceeded.begin(), exceeded.end()),
+                       exceeded.end());
+        for (const auto &[i, j] : exceeded)
+          if (lists->has_list(i))
+            {
+              const int k = state.bond_index(i, j);
+              Assert(k >= 0, ExcInternalError());
+              state.break_bond(i, k);
+            }
+        exceeded.clear();
+      }
+      const std::size_t n_new = state.synchronize();
+      if (n_new > 0)
+        build_work_lists();
+      return n_new;
+    }
+
+
+    template <int dim>
+    template <bool finite_kinematics>
+    void
+    BondOperator<dim>::nonlinear_dilatation_pass() const
+    {
+      const std::size_t n_offsets = stencil.slot_offset.size();
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        theta_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double        theta[chunk_size];
+          alignas(64) unsigned char failed[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = theta_chunks[c].first_slot;
+              const unsigned int len = theta_chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
+                theta[l] = 0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = stencil.slot_offset[k];
+                  const double         g = stencil.g[k], r = stencil.r[k],
+                               inv_r = stencil.inv_r[k];
+                  double        xi[dim], nk[dim];
+                  const double *ui[dim], *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      xi[d] = stencil.xi[d][k];
+                      nk[d] = stencil.n[d][k];
+                      ui[d] = u_slot[d].data() + s0;
+                      uj[d] = ui[d] + o;
+                    }
+                  const double *ci = s0_slot.data() + s0, *cj = ci + o;
+                  int           n_failed = 0;
+#pragma omp simd reduction(+ : n_failed)
+                  for (unsigned int l = 0; l < len; ++l)
+                    {
+                      double e = 0;
+                      if constexpr (finite_kinematics)
+                        {
+                          double length2 = 0;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            {
+                              const double y = xi[d] + (uj[d][l] - ui[d][l]);
+                              length2 += y * y;
+                            }
+                          e = std::sqrt(length2) - r;
+                        }
+                      else
+                        for (unsigned int d = 0; d < dim; ++d)
+                          e += nk[d] * (uj[d][l] - ui[d][l]);
+                      const bool intact = e * inv_r < std::min(ci[l], cj[l]);
+                      theta[l] += intact ? g * e : 0.;
+                      failed[l] = !intact;
+                      n_failed += !intact;
+                    }
+                  if (n_failed > 0)
+                    for (unsigned int l = 0; l < len; ++l)
+                      if (failed[l])
+                        record_exceeded(node_of_slot(s0 + l),
+                                        node_of_slot(s0 + l + o));
+                }
+              const double s = stencil.node_factor;
+              for (unsigned int l = 0; l < len; ++l)
+                t_slot[s0 + l] = s * theta[l];
+            }
+        },
+        chunk_grain);
+
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        theta_list_nodes.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const unsigned int i     = theta_list_nodes[q];
+              const std::size_t  si    = slot[i];
+              double             theta = 0;
+              const auto         visit = [&](const std::size_t sj,
+                                     const double     *xi,
+                                     const double     *n,
+                                     const double      r,
+                                     const double      g) {
+                double e = 0;
+                if constexpr (finite_kinematics)
+                  {
+                    double length2 = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        const double y =
+                          xi[d] + (u_slot[d][sj] - u_slot[d][si]);
+                        length2 += y * y;
+                      }
+                    e = std::sqrt(length2) - r;
+                  }
+                else
+                  for (unsigned int d = 0; d < dim; ++d)
+                    e += n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                if (e * (1. / r) < std::min(s0_slot[si], s0_slot[sj]))
+                  theta += g * e;
+                else
+                  record_exceeded(i, node_of_slot(sj));
+              };
+              if (use_lattice)
+                {
+                  for (std::size_t b = list_first[i]; b < list_first[i + 1];
+                       ++b)
+                    {
+                      const unsigned int k = list_stencil_index[b];
+                      double             xi[dim], n[dim];
+                      for (unsigned int d = 0; d < dim; ++d)
+                        {
+                          xi[d] = stencil.xi[d][k];
+                          n[d]  = stencil.n[d][k];
+                        }
+                      visit(si + stencil.slot_offset[k],
+                            xi,
+                            n,
+                            stencil.r[k],
+                            stencil.g[k]);
+                    }
+                  theta *= list_theta_scale[i];
+                }
+              else
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const ListBond &bond = list_bonds[b];
+                    double          xi[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      xi[d] = bond.n[d] * bond.r;
+                    visit(bond.neighbor_slot, xi, bond.n, bond.r, bond.g);
+                  }
+              t_slot[si] = s_slot[si] * theta;
+            }
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    template <bool finite_kinematics>
+    void
+    BondOperator<dim>::nonlinear_force_pass() const
+    {
+      const std::size_t n_offsets = stencil.slot_offset.size();
+      const bool        sb        = state_based;
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        force_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double        force[dim][chunk_size];
+          alignas(64) unsigned char failed[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = force_chunks[c].first_slot;
+              const unsigned int len = force_chunks[c].length;
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  force[d][l] = 0;
+              const double *ui[dim];
+              for (unsigned int d = 0; d < dim; ++d)
+                ui[d] = u_slot[d].data() + s0;
+              const double *ti = t_slot.data() + s0;
+              const double *si = s_slot.data() + s0;
+              const double *ci = s0_slot.data() + s0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = stencil.slot_offset[k];
+                  // Bond-based: s = 1 at every node, theta = 0.
+                  const double a = sb ? stencil.a[k] : 0.;
+                  const double b = stencil.b[k], r = stencil.r[k],
+                               inv_r = stencil.inv_r[k];
+                  double        xi[dim], nk[dim];
+                  const double *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      xi[d] = stencil.xi[d][k];
+                      nk[d] = stencil.n[d][k];
+                      uj[d] = ui[d] + o;
+                    }
+                  const double *tj = ti + o, *sj = si + o, *cj = ci + o;
+                  int           n_failed = 0;
+#pragma omp simd reduction(+ : n_failed)
+                  for (unsigned int l = 0; l < len; ++l)
+                    {
+                      double y[dim], e = 0, scale = 1;
+                      if constexpr (finite_kinematics)
+                        {
+                          double length2 = 0;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            {
+                              y[d] = xi[d] + (uj[d][l] - ui[d][l]);
+                              length2 += y[d] * y[d];
+                            }
+                          const double length = std::sqrt(length2);
+                          e                   = length - r;
+                          scale               = length > 0 ? 1. / length : 0.;
+                        }
+                      else
+                        for (unsigned int d = 0; d < dim; ++d)
+                          {
+                            y[d] = nk[d];
+                            e += nk[d] * (uj[d][l] - ui[d][l]);
+                          }
+                      const bool   intact = e * inv_r < std::min(ci[l], cj[l]);
+                      const double t =
+                        a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                      const double ty = intact ? t * scale : 0.;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        force[d][l] += ty * y[d];
+                      failed[l] = !intact;
+                      n_failed += !intact;
+                    }
+                  if (n_failed > 0)
+                    for (unsigned int l = 0; l < len; ++l)
+                      if (failed[l])
+                        record_exceeded(node_of_slot(s0 + l),
+                                        node_of_slot(s0 + l + o));
+                }
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  f_slot[d][s0 + l] = force[d][l];
+            }
+        },
+        chunk_grain);
+
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        force_list_nodes.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const unsigned int i      = force_list_nodes[q];
+              const std::size_t  si     = slot[i];
+              double             f[dim] = {};
+              const auto         visit  = [&](const std::size_t sj,
+                                     const double     *xi,
+                                     const double     *n,
+                                     const double      r,
+                                     const double      a,
+                                     const double      b) {
+                double y[dim], e = 0, scale = 1;
+                if constexpr (finite_kinematics)
+                  {
+                    double length2 = 0;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        y[d] = xi[d] + (u_slot[d][sj] - u_slot[d][si]);
+                        length2 += y[d] * y[d];
+                      }
+                    const double length = std::sqrt(length2);
+                    e                   = length - r;
+                    scale               = length > 0 ? 1. / length : 0.;
+                  }
+                else
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      y[d] = n[d];
+                      e += n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                    }
+                if (!(e * (1. / r) < std::min(s0_slot[si], s0_slot[sj])))
+                  {
+                    record_exceeded(i, node_of_slot(sj));
+                    return;
+                  }
+                const double t = (sb ? a * (t_slot[si] + t_slot[sj]) : 0.) +
+                                 b * (s_slot[si] + s_slot[sj]) * e;
+                for (unsigned int d = 0; d < dim; ++d)
+                  f[d] += t * scale * y[d];
+              };
+              if (use_lattice)
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const unsigned int k = list_stencil_index[b];
+                    double             xi[dim], n[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        xi[d] = stencil.xi[d][k];
+                        n[d]  = stencil.n[d][k];
+                      }
+                    visit(si + stencil.slot_offset[k],
+                          xi,
+                          n,
+                          stencil.r[k],
+                          stencil.a[k],
+                          stencil.b[k]);
+                  }
+              else
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const ListBond &bond = list_bonds[b];
+                    double          xi[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      xi[d] = bond.n[d] * bond.r;
+                    visit(bond.neighbor_slot,
+                          xi,
+                          bond.n,
+                          bond.r,
+                          bond.a,
+                          bond.b);
+                  }
+              for (unsigned int d = 0; d < dim; ++d)
+                f_slot[d][si] = f[d];
+            }
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    double
+    BondOperator<dim>::elastic_energy(const VectorType &displacement) const
+    {
+      // V_i W_i = 1/2 s_i sum_j b_ij e_ij^2 + 1/2 V_i lambda theta_i^2,
+      // with b_ij = V_i w_ij beta(r_ij) (Model::dilatation_energy_modulus()).
+      std::vector<double> theta;
+      compute_dilatation(displacement, theta);
+      if (!state_based)
+        copy_in(displacement);
+      const double lambda = model->dilatation_energy_modulus();
+      const bool   fail   = s0_slot.size() > 0;
+      const auto   term   = [&](const std::size_t si,
+                            const std::size_t sj,
+                            const double     *xi,
+                            const double     *n,
+                            const double      r,
+                            const double      b) {
+        double e = 0;
+        if (finite)
+          {
+            double length2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double y = xi[d] + (u_slot[d][sj] - u_slot[d][si]);
+                length2 += y * y;
+              }
+            e = std::sqrt(length2) - r;
+          }
+        else
+          for (unsigned int d = 0; d < dim; ++d)
+            e += n[d] * (u_slot[d][sj] - u_slot[d][si]);
+        if (fail && !(e / r < std::min(s0_slot[si], s0_slot[sj])))
+          return 0.;
+        return b * e * e;
+      };
+      const double energy = parallel::accumulate_from_subranges<double>(
+        [&](const unsigned int begin, const unsigned int end) {
+          double sum = 0;
+          for (unsigned int i = begin; i < end; ++i)
+            {
+              const std::size_t si    = slot[i];
+              double            bonds = 0;
+              if (use_lattice)
+                {
+                  const auto visit = [&](const unsigned int k) {
+                    double xi[dim], n[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        xi[d] = stencil.xi[d][k];
+                        n[d]  = stencil.n[d][k];
+                      }
+                    bonds += term(si,
+                                  si + stencil.slot_offset[k],
+                                  xi,
+                                  n,
+                                  stencil.r[k],
+                                  stencil.b[k]);
+                  };
+                  if (on_stencil(i))
+                    for (unsigned int k = 0; k < stencil.r.size(); ++k)
+                      visit(k);
+                  else
+                    for (std::size_t b = list_first[i]; b < list_first[i + 1];
+                         ++b)
+                      visit(list_stencil_index[b]);
+                }
+              else
+                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                  {
+                    const ListBond &bond = list_bonds[b];
+                    double          xi[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      xi[d] = bond.n[d] * bond.r;
+                    bonds +=
+                      term(si, bond.neighbor_slot, xi, bond.n, bond.r, bond.b);
+                  }
+              sum += 0.5 * s_slot[si] * bonds +
+                     0.5 * (*nodes)[i].volume() * lambda * theta[i] * theta[i];
+            }
+          return sum;
+        },
+        0u,
+        nodes->n_owned(),
+        node_grain);
+      return Utilities::MPI::sum(energy, nodes->get_communicator());
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)                                                    \
+  template void BondOperator<dim>::set_kinematics(                                   \
+    const bool,                                                                      \
+    const std::vector<double> &);                                                    \
+  template void        BondOperator<dim>::record_exceeded(const unsigned int,        \
+                                                   const unsigned int) const; \
+  template std::size_t BondOperator<dim>::commit_broken_bonds(                       \
+    Discretization::BondState<dim> &);                                               \
+  template double BondOperator<dim>::elastic_energy(const VectorType &) const;
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
+    template void
+    BondOperator<2>::nonlinear_dilatation_pass<true>() const;
+    template void
+    BondOperator<2>::nonlinear_dilatation_pass<false>() const;
+    template void
+    BondOperator<3>::nonlinear_dilatation_pass<true>() const;
+    template void
+    BondOperator<3>::nonlinear_dilatation_pass<false>() const;
+    template void
+    BondOperator<2>::nonlinear_force_pass<true>() const;
+    template void
+    BondOperator<2>::nonlinear_force_pass<false>() const;
+    template void
+    BondOperator<3>::nonlinear_force_pass<true>() const;
+    template void
+    BondOperator<3>::nonlinear_force_pass<false>() const;
+  } // namespace Operators
+} // namespace PeriDEAL

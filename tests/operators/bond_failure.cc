@@ -1,0 +1,317 @@
+// Finite kinematics and bond failure of the matrix-free operator, against
+// brute-force sums written here from the definitions (Kind of test:
+// brute-force reference and a derivative check, 1 and 2 ranks):
+//
+// - forces with the deformed bond direction, f_i = sum_j V_i w_ij
+//   (t_ij + t_ji) (xi + eta)/|xi + eta|, extension e = |xi + eta| - |xi|,
+//   over the bonds whose stretch e/|xi| stays below the critical stretch;
+// - the bonds found over it are exactly the pairs the brute force finds,
+//   and after commit_broken_bonds() they stay out;
+// - the elastic energy against sum_i V_i W_i, and its derivative against
+//   the forces (central differences: F = -dE/du, which holds because the
+//   finite-deformation kernel is hyperelastic);
+// - serial only: the power-method estimate of the largest eigenvalue of
+//   M^{-1} K against LAPACK on the assembled K, and Gershgorin's bound
+//   above it.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_dgq.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include <perideal/discretization/bond_state.h>
+#include <perideal/discretization/neighbor_list.h>
+#include <perideal/discretization/node_set.h>
+#include <perideal/models/model.h>
+#include <perideal/operators/bond_operator.h>
+#include <perideal/quadrature/exact_partial_volume.h>
+
+#include <iostream>
+
+using namespace dealii;
+using namespace PeriDEAL;
+
+// A smooth field plus an opening across x = x_c that stretches the bonds
+// crossing it by a few per cent (some above, some below the critical
+// stretch, depending on their direction and length).
+template <int dim>
+Tensor<1, dim>
+field(const Point<dim> &x, const double x_c)
+{
+  Tensor<1, dim> u;
+  for (unsigned int c = 0; c < dim; ++c)
+    u[c] = 2e-3 * (std::sin(0.4 * x[0] + c) + 0.3 * x[1] * x[dim - 1]);
+  if (x[0] > x_c)
+    u[0] += 0.03 + 0.01 * std::sin(x[1]);
+  return u;
+}
+
+template <int dim>
+void
+check(const std::string &model_name,
+      const unsigned int n_cells,
+      const double       m_ratio)
+{
+  const MPI_Comm                            comm = MPI_COMM_WORLD;
+  parallel::distributed::Triangulation<dim> tria(comm);
+  GridGenerator::subdivided_hyper_cube(tria, n_cells, 0, n_cells);
+  DoFHandler<dim> dof_handler(tria);
+  FESystem<dim>   fe(FE_DGQ<dim>(0), dim);
+  dof_handler.distribute_dofs(fe);
+
+  const double     s0 = 0.012;
+  ParameterHandler prm;
+  Models::ModelRegistry<dim>::declare_parameters(prm);
+  prm.enter_subsection(model_name);
+  prm.set("Young's modulus", "1");
+  prm.set("Poisson's ratio", model_name == "bond-based" ? "0.25" : "0.3");
+  prm.set("Critical stretch", "0.012");
+  prm.set("Density", "2");
+  prm.leave_subsection();
+  const auto model = Models::ModelRegistry<dim>::create(model_name, prm);
+
+  const double                 horizon = m_ratio;
+  Discretization::NodeSet<dim> nodes;
+  nodes.reinit(dof_handler, 2 * (horizon + std::sqrt(dim)));
+  const PeriDEAL::Quadrature::ExactPartialVolume<dim> exact;
+  Discretization::NeighborList<dim>                   lists;
+  lists.reinit(nodes, horizon, exact, model->is_state_based(), false);
+  Discretization::BondState<dim> state;
+  state.reinit(nodes, lists);
+  Operators::BondOperator<dim> op;
+  op.reinit(nodes, lists, *model, horizon, &state);
+  op.set_kinematics(true,
+                    std::vector<double>(nodes.size(),
+                                        model->critical_stretch(horizon)));
+
+  const double                                      x_c = 0.5 * n_cells - 0.1;
+  typename Operators::BondOperator<dim>::VectorType u, force;
+  op.initialize_dof_vector(u);
+  op.initialize_dof_vector(force);
+  for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+    {
+      const auto value = field(nodes[i].location, x_c);
+      for (unsigned int c = 0; c < dim; ++c)
+        u[nodes[i].dofs[c]] = value[c];
+    }
+  u.update_ghost_values();
+  op.apply(u, force);
+  const std::size_t n_committed = op.commit_broken_bonds(state);
+  typename Operators::BondOperator<dim>::VectorType force_after;
+  op.initialize_dof_vector(force_after);
+  op.apply(u, force_after);
+  const double energy = op.elastic_energy(u);
+
+  // Brute force over the whole mesh.
+  std::vector<Discretization::Node<dim>> all;
+  for (const auto &part :
+       Utilities::MPI::all_gather(comm,
+                                  std::vector<Discretization::Node<dim>>(
+                                    nodes.nodes().begin(),
+                                    nodes.nodes().begin() + nodes.n_owned())))
+    all.insert(all.end(), part.begin(), part.end());
+  const unsigned int          n = all.size();
+  std::vector<Tensor<1, dim>> U(n);
+  for (unsigned int i = 0; i < n; ++i)
+    U[i] = field(all[i].location, x_c);
+  auto weight = [&](const unsigned int i, const unsigned int j) {
+    return i == j ? 0. :
+                    exact.weight(all[i].location, horizon, all[j].cell) *
+                      all[j].volume();
+  };
+  // Deformed bond, extension, intact?
+  auto bond = [&](const unsigned int i,
+                  const unsigned int j,
+                  Tensor<1, dim>    &y,
+                  double            &r,
+                  double            &e) {
+    const Tensor<1, dim> xi = all[j].location - all[i].location;
+    r                       = xi.norm();
+    y                       = xi + (U[j] - U[i]);
+    e                       = y.norm() - r;
+    return e / r < s0;
+  };
+  std::vector<double> m(n, 0.), theta(n, 0.);
+  std::size_t         failed_pairs = 0;
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < n; ++j)
+      {
+        const double w = weight(i, j);
+        if (w == 0)
+          continue;
+        Tensor<1, dim> y;
+        double         r, e;
+        const bool     intact = bond(i, j, y, r, e);
+        const double   omega  = model->influence(r, horizon);
+        m[i] += omega * r * r * w;
+        if (!intact)
+          {
+            failed_pairs += (i < j);
+            continue;
+          }
+        theta[i] += omega * r * w * e;
+      }
+  for (unsigned int i = 0; i < n; ++i)
+    theta[i] *= model->is_state_based() ? dim / m[i] : 0.;
+
+  double diff2 = 0, norm2 = 0, after2 = 0, brute_energy = 0;
+  // The potential of the LPS force state (t = (c_K theta omega r + c_mu
+  // omega e) / m, c_K = d kappa - c_mu / d): W = c_mu/(2m) sum omega e^2 w +
+  // lambda theta^2 / 2 with lambda = c_K / d = kappa - c_mu / d^2, i.e.
+  // K - 5 mu / 3 (3D) and kappa - 2 mu (2D). Bond-based: lambda = 0.
+  const double K = model->bulk_modulus(), mu = model->shear_modulus();
+  const double kappa =
+    dim == 3 ?
+      K :
+      (model->plane_stress() ? 9 * K * mu / (3 * K + 4 * mu) : K + mu / 3);
+  const double lambda =
+    model->is_state_based() ? (dim == 3 ? K - 5 * mu / 3 : kappa - 2 * mu) : 0.;
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      const auto dofs = all[i].dofs;
+      if (!dof_handler.locally_owned_dofs().is_element(dofs[0]))
+        continue;
+      Tensor<1, dim> f;
+      double         W = 0;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const double w = weight(i, j);
+          if (w == 0)
+            continue;
+          Tensor<1, dim> y;
+          double         r, e;
+          if (!bond(i, j, y, r, e))
+            continue;
+          const double t =
+            model->dilatation_coefficient(m[i], r, horizon) * theta[i] +
+            model->dilatation_coefficient(m[j], r, horizon) * theta[j] +
+            (model->extension_coefficient(m[i], r, horizon) +
+             model->extension_coefficient(m[j], r, horizon)) *
+              e;
+          f += all[i].volume() * w * t * y / y.norm();
+          W += 0.5 * model->extension_coefficient(m[i], r, horizon) * e * e * w;
+        }
+      W += 0.5 * lambda * theta[i] * theta[i];
+      brute_energy += all[i].volume() * W;
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          diff2 += std::pow(force[dofs[c]] - f[c], 2);
+          after2 += std::pow(force_after[dofs[c]] - f[c], 2);
+          norm2 += f[c] * f[c];
+        }
+    }
+  diff2                       = Utilities::MPI::sum(diff2, comm);
+  after2                      = Utilities::MPI::sum(after2, comm);
+  norm2                       = Utilities::MPI::sum(norm2, comm);
+  brute_energy                = Utilities::MPI::sum(brute_energy, comm);
+  const double relative       = std::sqrt(diff2 / norm2);
+  const double relative_after = std::sqrt(after2 / norm2);
+  const double energy_error   = std::abs(energy - brute_energy) / brute_energy;
+
+  // F = -dE/du by central differences at a few DoFs (the bonds over the
+  // critical stretch are broken for good now, so E is smooth).
+  double       fd_error = 0;
+  const double eps      = 1e-6;
+  for (const unsigned int node : {0u, n / 3, n / 2 + 1, n - 1})
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        const auto   dof   = all[node].dofs[c];
+        const bool   mine  = dof_handler.locally_owned_dofs().is_element(dof);
+        const double value = mine ? u[dof] : 0.;
+        u.zero_out_ghost_values();
+        if (mine)
+          u[dof] = value + eps;
+        u.update_ghost_values();
+        const double plus = op.elastic_energy(u);
+        u.zero_out_ghost_values();
+        if (mine)
+          u[dof] = value - eps;
+        u.update_ghost_values();
+        const double minus = op.elastic_energy(u);
+        u.zero_out_ghost_values();
+        if (mine)
+          u[dof] = value;
+        u.update_ghost_values();
+        const double f =
+          Utilities::MPI::sum(mine ? force_after[dof] : 0., comm);
+        const double scale = std::sqrt(norm2 / (dim * n));
+        fd_error =
+          std::max(fd_error, std::abs(-(plus - minus) / (2 * eps) - f) / scale);
+      }
+
+  std::cout << dim << "D " << model_name << ": " << n << " nodes, "
+            << failed_pairs << " bond pairs over the critical stretch\n"
+            << "  finite-kinematics forces against the brute-force sum <= "
+               "1e-12: "
+            << (relative <= 1e-12 ? "yes" : "NO")
+            << "\n  committed pairs = brute-force pairs: "
+            << (n_committed == failed_pairs ? "yes" : "NO")
+            << "\n  forces after the commit unchanged <= 1e-12: "
+            << (relative_after <= 1e-12 ? "yes" : "NO")
+            << "\n  elastic energy against the brute-force sum <= 1e-12: "
+            << (energy_error <= 1e-12 ? "yes" : "NO")
+            << "\n  F = -dE/du by central differences <= 1e-6: "
+            << (fd_error <= 1e-6 ? "yes" : "NO") << std::endl;
+  if (relative > 1e-12 || n_committed != failed_pairs || energy_error > 1e-12 ||
+      fd_error > 1e-6)
+    std::cout << "  (force " << relative << ", committed " << n_committed
+              << ", energy " << energy_error << ", derivative " << fd_error
+              << ")" << std::endl;
+
+  if (Utilities::MPI::n_mpi_processes(comm) == 1)
+    {
+      // lambda_max(M^{-1} K) exactly, with K the linearised stiffness of
+      // the intact bonds.
+      const double                   rho = model->density();
+      TrilinosWrappers::SparseMatrix K;
+      op.assemble(K);
+      const unsigned int       N = K.m();
+      LAPACKFullMatrix<double> A(N, N);
+      for (auto it = K.begin(); it != K.end(); ++it)
+        A(it->row(), it->column()) =
+          it->value() / (rho * std::sqrt(all[it->row() / dim].volume() *
+                                         all[it->column() / dim].volume()));
+      // Symmetrise (the LPS stiffness is symmetric up to round-off).
+      for (unsigned int r = 0; r < N; ++r)
+        for (unsigned int c = 0; c < r; ++c)
+          A(r, c) = A(c, r) = 0.5 * (A(r, c) + A(c, r));
+      Vector<double>     values;
+      FullMatrix<double> vectors;
+      A.compute_eigenvalues_symmetric(-1e300, 1e300, 0, values, vectors);
+      const double largest    = values[values.size() - 1];
+      const double power      = op.estimate_largest_eigenvalue(rho, 60);
+      const double gershgorin = op.gershgorin_eigenvalue_bound(rho);
+      std::cout << "  power method within 3% below the largest eigenvalue: "
+                << (power <= largest * (1 + 1e-10) && power >= 0.97 * largest ?
+                      "yes" :
+                      "NO")
+                << "\n  Gershgorin bound above it: "
+                << (gershgorin >= largest ? "yes" : "NO") << std::endl;
+      std::cout << "  (lambda ratios: power " << std::setprecision(3)
+                << power / largest << ", Gershgorin " << gershgorin / largest
+                << ")" << std::endl;
+    }
+}
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    std::cout.setstate(std::ios::failbit);
+  check<2>("linear peridynamic solid", 14, 3);
+  check<2>("bond-based", 14, 3);
+  check<3>("linear peridynamic solid", 7, 2);
+  check<3>("bond-based", 7, 2.5);
+}
