@@ -527,6 +527,19 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    void
+    BoundaryConditions<dim>::set_time(const double t)
+    {
+      for (auto *function : {dirichlet_displacement.get(),
+                             body_force.get(),
+                             traction.get(),
+                             boundary_stress.get()})
+        if (function != nullptr)
+          function->set_time(t);
+    }
+
+
     template class BoundaryConditions<2>;
     template class BoundaryConditions<3>;
   } // namespace Boundary

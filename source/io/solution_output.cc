@@ -65,7 +65,9 @@ namespace PeriDEAL
       const DoFHandler<dim>               &dof_handler,
       const Discretization::NodeSet<dim>  &nodes,
       const TrilinosWrappers::MPI::Vector &displacement,
-      const std::vector<NodeField>        &fields) const
+      const std::vector<NodeField>        &fields,
+      const unsigned int                   index,
+      const std::vector<NodeVector>       &vectors) const
     {
       if (!write_vtu)
         return "";
@@ -112,6 +114,11 @@ namespace PeriDEAL
                                names,
                                DataOut<dim>::type_dof_data,
                                interpretation);
+      for (const auto &vector : vectors)
+        data_out.add_data_vector(*vector.values,
+                                 std::vector<std::string>(dim, vector.name),
+                                 DataOut<dim>::type_dof_data,
+                                 interpretation);
       for (unsigned int f = 0; f < fields.size(); ++f)
         data_out.add_data_vector(cell_data[f],
                                  fields[f].name,
@@ -123,7 +130,8 @@ namespace PeriDEAL
       // output, never a truncated one. Pieces first, then the record that
       // names them.
       const auto piece = [&](const unsigned int r) {
-        return base_name + "_0." + std::to_string(r) + ".vtu";
+        return base_name + "_" + std::to_string(index) + "." +
+               std::to_string(r) + ".vtu";
       };
       const auto write_and_rename = [&](const std::string &name,
                                         const auto        &write) {
@@ -134,8 +142,9 @@ namespace PeriDEAL
                                            data_out.write_vtu(out);
                                          }),
                         comm);
-      const std::string record = base_name + "_0.pvtu";
-      std::string       error;
+      const std::string record =
+        base_name + "_" + std::to_string(index) + ".pvtu";
+      std::string error;
       if (rank == 0)
         {
           // Pieces of an earlier run on more processes are stale now.
@@ -153,6 +162,26 @@ namespace PeriDEAL
         }
       throw_on_any_rank(error, comm);
       return record;
+    }
+
+
+    template <int dim>
+    std::string
+    SolutionOutput<dim>::write_time_series(
+      const std::vector<std::pair<double, std::string>> &records,
+      const MPI_Comm                                     comm) const
+    {
+      if (!write_vtu)
+        return "";
+      const std::string name = base_name + ".pvd";
+      std::string       error;
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        error = write_then_rename(output_directory + "/" + name,
+                                  [&](std::ostream &out) {
+                                    DataOutBase::write_pvd_record(out, records);
+                                  });
+      throw_on_any_rank(error, comm);
+      return name;
     }
 
 

@@ -969,6 +969,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    Boundary::BoundaryConditions<dim> &
+    Simulator<dim>::get_boundary_conditions()
+    {
+      return boundary_conditions;
+    }
+
+
+    template <int dim>
     const Boundary::BoundaryTreatment &
     Simulator<dim>::get_boundary_treatment() const
     {

@@ -101,6 +101,11 @@ namespace PeriDEAL
       void
       check_boundary_ids(const Triangulation<dim> &triangulation) const;
 
+      /// Evaluate the functions (Dirichlet displacement, body force,
+      /// traction) at time @p t from now on.
+      void
+      set_time(const double t);
+
       /// Whether faces with boundary id @p id carry a Dirichlet condition.
       bool
       is_dirichlet_boundary(const types::boundary_id id) const;
@@ -142,7 +147,7 @@ namespace PeriDEAL
     private:
       std::vector<types::boundary_id> dirichlet_ids;
       std::vector<bool>               dirichlet_components;
-      double                          layer_thickness = 1;
+      double                          layer_thickness      = 1;
       std::string                     layer_thickness_text = "1";
       std::vector<types::boundary_id> traction_ids;
 
@@ -150,7 +155,7 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
       std::unique_ptr<Functions::ParsedFunction<dim>> traction;
       std::unique_ptr<Functions::ParsedFunction<dim>> boundary_stress;
-      bool                                            traction_from_stress = false;
+      bool traction_from_stress = false;
     };
   } // namespace Boundary
 } // namespace PeriDEAL

@@ -39,6 +39,13 @@ namespace PeriDEAL
      * node. Reads the subsection "Output" (directory, base name, whether to
      * write at all).
      */
+    /// A vector field given by its DoF values (velocity, say), for output.
+    struct NodeVector
+    {
+      std::string                          name;
+      const TrilinosWrappers::MPI::Vector *values;
+    };
+
     template <int dim>
     class SolutionOutput
     {
@@ -50,15 +57,30 @@ namespace PeriDEAL
       parse_parameters(ParameterHandler &prm);
 
       /**
-       * Write the fields; returns the name of the PVTU record (empty if
-       * writing is switched off). The output directory is created if
-       * missing.
+       * Write the fields as <base name>_<index>.pvtu with one
+       * <base name>_<index>.<rank>.vtu per process (@p vectors: further
+       * vector fields of DoF values, such as the velocity); returns the name
+       * of the PVTU record (empty if writing is switched off). The output
+       * directory is created if missing.
        */
       std::string
       write(const DoFHandler<dim>               &dof_handler,
             const Discretization::NodeSet<dim>  &nodes,
             const TrilinosWrappers::MPI::Vector &displacement,
-            const std::vector<NodeField>        &fields) const;
+            const std::vector<NodeField>        &fields,
+            const unsigned int                   index   = 0,
+            const std::vector<NodeVector>       &vectors = {}) const;
+
+      /**
+       * Write <base name>.pvd, the time series of the given (time, record)
+       * pairs that ParaView opens as an animation, on rank 0 under a
+       * temporary name (collective). Returns its name, or "" when output is
+       * off.
+       */
+      std::string
+      write_time_series(
+        const std::vector<std::pair<double, std::string>> &records,
+        const MPI_Comm                                     comm) const;
 
       const std::string &
       directory() const;

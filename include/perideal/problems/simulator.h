@@ -187,6 +187,10 @@ namespace PeriDEAL
       const Boundary::BoundaryConditions<dim> &
       get_boundary_conditions() const;
 
+      /// The boundary conditions, to set their time (dynamics).
+      Boundary::BoundaryConditions<dim> &
+      get_boundary_conditions();
+
       const Boundary::BoundaryTreatment &
       get_boundary_treatment() const;
 

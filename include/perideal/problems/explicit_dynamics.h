@@ -1,0 +1,166 @@
+#ifndef perideal_problems_explicit_dynamics_h
+#define perideal_problems_explicit_dynamics_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parsed_function.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <perideal/discretization/bond_state.h>
+#include <perideal/discretization/crack_geometry.h>
+#include <perideal/operators/bond_operator.h>
+#include <perideal/problems/problem_type.h>
+#include <perideal/problems/simulator.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    /**
+     * Explicit dynamics with brittle fracture (problem type
+     * `explicit dynamics`): the semi-discrete equation of motion
+     * \f$\rho V_i \ddot u_i = F_i(u) + V_i b_i(t)\f$ integrated with velocity
+     * Verlet (hybrid-collocation paper, Eq. 29),
+     * \f[
+     *   \dot u^{n+1/2} = \dot u^n + \tfrac{\Delta t}{2}\ddot u^n,\quad
+     *   u^{n+1} = u^n + \Delta t\,\dot u^{n+1/2},\quad
+     *   \dot u^{n+1} = \dot u^{n+1/2} + \tfrac{\Delta t}{2}\ddot u^{n+1},
+     * \f]
+     * with the internal forces \f$F_i\f$ of Operators::BondOperator (finite
+     * or linearised kinematics) and bond failure at the model's critical
+     * stretch (Models::Model::critical_stretch()); broken bonds stay broken
+     * (Discretization::BondState).
+     *
+     * - **Time step.** Given, or the safety factor times the bound
+     *   \f$\Delta t \le 2/\sqrt{\lambda_G}\f$, \f$\lambda_G\f$ Gershgorin's
+     *   bound of the largest eigenvalue of \f$M^{-1}K\f$
+     *   (BondOperator::gershgorin_eigenvalue_bound(); for bond-based models
+     *   the bound of Silling & Askari 2005). A step above the bound is an
+     *   error unless 'Allow unstable time step' is set. The power-method
+     *   estimate of the actual limit is printed next to it.
+     * - **Set-up.** Initial displacement and velocity (functions); the
+     *   Dirichlet layers of 'Boundary conditions' prescribe the displacement
+     *   or the velocity (function of x and t); body forces and tractions of
+     *   'Boundary conditions' (at t = 0) scaled by 'Load history' g(t);
+     *   pre-cracks (Discretization::PreCracks) and no-fail boxes.
+     * - **Output.** PVTU every N steps or every interval of time with a PVD
+     *   time series (displacement, velocity, damage, broken bonds); a CSV
+     *   of time, kinetic and elastic energy, external work and broken bonds;
+     *   a progress line on rank 0.
+     *
+     * Only the `none` boundary treatment is supported so far.
+     */
+    template <int dim>
+    class ExplicitDynamics : public ProblemType<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm) override;
+
+      void
+      check_input(const Simulator<dim> &simulator) const override;
+
+      void
+      run(Simulator<dim> &simulator) override;
+
+    private:
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+      /// Bonds, operator, failure, pre-cracks, constraints, masses, loads.
+      void
+      setup(Simulator<dim> &simulator);
+
+      /// Choose the time step from the stability bound (or check it).
+      void
+      choose_time_step(Simulator<dim> &simulator);
+
+      /// Initial fields, prescribed values at t = 0, initial forces.
+      void
+      initialize(Simulator<dim> &simulator);
+
+      /// One velocity-Verlet step from time to time + dt.
+      void
+      step(Simulator<dim> &simulator);
+
+      /// Prescribed components at time @p t into u (and v).
+      void
+      apply_prescribed(Simulator<dim> &simulator,
+                       const double    t,
+                       const double    dt);
+
+      /// Forces at the current u, bond failure committed; the
+      /// acceleration of the free DoFs.
+      void
+      compute_acceleration(Simulator<dim> &simulator);
+
+      /// Energies and broken bonds now: one CSV row (collective).
+      void
+      record_energies(Simulator<dim> &simulator);
+
+      /// PVTU of the current state and the PVD series (collective).
+      void
+      write_output(Simulator<dim> &simulator);
+
+      void
+      print_progress_line(Simulator<dim> &simulator);
+
+      /// Stop with the step and node named when a value is not finite
+      /// (collective).
+      void
+      check_finite(Simulator<dim> &simulator) const;
+
+      // Input.
+      double       end_time            = 1;
+      double       given_time_step     = 0;
+      double       safety_factor       = 0.9;
+      bool         allow_unstable      = false;
+      bool         finite_kinematics   = true;
+      bool         prescribe_velocity  = false;
+      unsigned int output_every_steps  = 0;
+      double       output_interval     = 0;
+      unsigned int energy_every_steps  = 10;
+      double       progress_interval_s = 5;
+      std::string  energy_file;
+      std::string  pre_crack_text, no_fail_text;
+      std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement;
+      std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity;
+      std::unique_ptr<FunctionParser<1>>              load_history;
+      Discretization::PreCracks<dim>                  pre_cracks;
+      std::vector<BoundingBox<dim>>                   no_fail_boxes;
+
+      // State.
+      Discretization::BondState<dim> bond_state;
+      Operators::BondOperator<dim>   bond_operator;
+      AffineConstraints<double>      constraints;
+      /// Prescribed DoFs: local vector index, node, component.
+      struct Prescribed
+      {
+        unsigned int index, node, component;
+      };
+      std::vector<Prescribed> prescribed;
+      std::vector<bool>       is_prescribed; // per local vector index
+      VectorType              u, v, a, force, previous_force, load, mass;
+      double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
+      unsigned int            step_number = 0, n_steps = 0;
+      double                  external_work = 0, load_factor = 0;
+      std::size_t             broken_bonds  = 0;
+      double                  last_progress = 0, next_output_time = 0;
+      double                  loop_start      = 0;
+      unsigned int            loop_start_step = 0;
+      std::vector<std::vector<double>>            energy_rows;
+      std::vector<std::pair<double, std::string>> records;
+    };
+  } // namespace Problems
+} // namespace PeriDEAL
+
+#endif

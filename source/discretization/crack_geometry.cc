@@ -1,0 +1,279 @@
+#include <deal.II/base/utilities.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/discretization/crack_geometry.h>
+
+#include <cmath>
+
+namespace PeriDEAL
+{
+  namespace Discretization
+  {
+    namespace
+    {
+      /// Split "a; b; c" into trimmed non-empty items, each a list of
+      /// numbers.
+      std::vector<std::vector<double>>
+      parse_lists(const std::string &text, const std::string &entry)
+      {
+        std::vector<std::vector<double>> result;
+        for (const auto &item : Utilities::split_string_list(text, ';'))
+          {
+            if (item.empty())
+              continue;
+            std::vector<double> numbers;
+            for (const auto &word : Utilities::split_string_list(item, ','))
+              {
+                std::size_t used = 0;
+                double      x    = 0;
+                try
+                  {
+                    x = std::stod(word, &used);
+                  }
+                catch (...)
+                  {
+                    used = 0;
+                  }
+                AssertThrow(used == word.size() && !word.empty() &&
+                              std::isfinite(x),
+                            ExcInvalidInput(entry,
+                                            text,
+                                            "'" + word + "' in '" + item +
+                                              "' is not a number"));
+                numbers.push_back(x);
+              }
+            result.push_back(numbers);
+          }
+        return result;
+      }
+
+      double
+      orientation(const Point<2> &a, const Point<2> &b, const Point<2> &c)
+      {
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+      }
+
+      bool
+      on_segment(const Point<2> &a, const Point<2> &b, const Point<2> &p)
+      {
+        return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+               std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+      }
+
+      /// Whether the closed segments [a, b] and [c, d] intersect.
+      bool
+      segments_intersect(const Point<2> &a,
+                         const Point<2> &b,
+                         const Point<2> &c,
+                         const Point<2> &d)
+      {
+        const double o1 = orientation(a, b, c), o2 = orientation(a, b, d),
+                     o3 = orientation(c, d, a), o4 = orientation(c, d, b);
+        if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
+            ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+          return true;
+        return (o1 == 0 && on_segment(a, b, c)) ||
+               (o2 == 0 && on_segment(a, b, d)) ||
+               (o3 == 0 && on_segment(c, d, a)) ||
+               (o4 == 0 && on_segment(c, d, b));
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    PreCracks<dim>::parse(const std::string &text, const std::string &entry)
+    {
+      cracks.clear();
+      for (const auto &numbers : parse_lists(text, entry))
+        {
+          Crack crack;
+          if (dim == 2)
+            {
+              AssertThrow(numbers.size() == 4,
+                          ExcInvalidInput(entry,
+                                          text,
+                                          "a 2D pre-crack is a segment "
+                                          "'x1, y1, x2, y2'; separate "
+                                          "segments with ';'"));
+            }
+          else
+            AssertThrow(numbers.size() >= 9 && numbers.size() % 3 == 0,
+                        ExcInvalidInput(entry,
+                                        text,
+                                        "a 3D pre-crack is a planar polygon "
+                                        "of at least three vertices 'x1, "
+                                        "y1, z1, x2, y2, z2, x3, y3, z3, "
+                                        "...'; separate polygons with ';'"));
+          for (std::size_t k = 0; k < numbers.size(); k += dim)
+            {
+              Point<dim> p;
+              for (unsigned int d = 0; d < dim; ++d)
+                p[d] = numbers[k + d];
+              crack.vertices.push_back(p);
+            }
+          crack.box = BoundingBox<dim>(crack.vertices);
+          if constexpr (dim == 3)
+            {
+              // Newell's normal; every vertex must lie in its plane.
+              Tensor<1, dim>     normal;
+              const unsigned int n = crack.vertices.size();
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  const auto &p = crack.vertices[k];
+                  const auto &q = crack.vertices[(k + 1) % n];
+                  normal[0] += (p[1] - q[1]) * (p[2] + q[2]);
+                  normal[1] += (p[2] - q[2]) * (p[0] + q[0]);
+                  normal[2] += (p[0] - q[0]) * (p[1] + q[1]);
+                }
+              const double size = crack.box.side_length(0) +
+                                  crack.box.side_length(1) +
+                                  crack.box.side_length(2);
+              AssertThrow(normal.norm() > 1e-12 * size * size,
+                          ExcInvalidInput(entry,
+                                          text,
+                                          "a pre-crack polygon has no area "
+                                          "(collinear vertices)"));
+              crack.normal = normal / normal.norm();
+              for (const auto &p : crack.vertices)
+                AssertThrow(std::abs((p - crack.vertices[0]) * crack.normal) <=
+                              1e-9 * size,
+                            ExcInvalidInput(entry,
+                                            text,
+                                            "the vertices of a pre-crack "
+                                            "polygon must lie in one plane"));
+              crack.axis_u = crack.vertices[1] - crack.vertices[0];
+              crack.axis_u /= crack.axis_u.norm();
+              crack.axis_v = cross_product_3d(crack.normal, crack.axis_u);
+            }
+          cracks.push_back(crack);
+        }
+    }
+
+
+    template <int dim>
+    bool
+    PreCracks<dim>::cuts(const Point<dim> &a, const Point<dim> &b) const
+    {
+      BoundingBox<dim> bond(std::make_pair(a, a));
+      bond.merge_with(BoundingBox<dim>(std::make_pair(b, b)));
+      for (const auto &crack : cracks)
+        {
+          bool overlap = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            overlap = overlap &&
+                      crack.box.lower_bound(d) <= bond.upper_bound(d) &&
+                      bond.lower_bound(d) <= crack.box.upper_bound(d);
+          if (!overlap)
+            continue;
+          if constexpr (dim == 2)
+            {
+              if (segments_intersect(a,
+                                     b,
+                                     crack.vertices[0],
+                                     crack.vertices[1]))
+                return true;
+            }
+          else
+            {
+              const auto  &o  = crack.vertices[0];
+              const double da = (a - o) * crack.normal,
+                           db = (b - o) * crack.normal;
+              if ((da > 0 && db > 0) || (da < 0 && db < 0) || da == db)
+                continue; // same side, or in the plane (no crossing)
+              const Point<dim> p = a + (da / (da - db)) * (b - a);
+              // Crossing-number test in the plane's coordinates.
+              const auto project = [&](const Point<dim> &x) {
+                return Point<2>((x - o) * crack.axis_u, (x - o) * crack.axis_v);
+              };
+              const Point<2>     q      = project(p);
+              bool               inside = false;
+              const unsigned int n      = crack.vertices.size();
+              for (unsigned int k = 0, l = n - 1; k < n; l = k++)
+                {
+                  const Point<2> vk = project(crack.vertices[k]),
+                                 vl = project(crack.vertices[l]);
+                  if ((vk[1] > q[1]) != (vl[1] > q[1]) &&
+                      q[0] <
+                        (vl[0] - vk[0]) * (q[1] - vk[1]) / (vl[1] - vk[1]) +
+                          vk[0])
+                    inside = !inside;
+                }
+              if (inside)
+                return true;
+            }
+        }
+      return false;
+    }
+
+
+    template <int dim>
+    std::size_t
+    PreCracks<dim>::break_bonds(const NodeSet<dim>      &nodes,
+                                const NeighborList<dim> &lists,
+                                BondState<dim>          &state,
+                                const double             reach) const
+    {
+      if (!cracks.empty())
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          if (lists.has_list(i))
+            {
+              const Point<dim> &x = nodes[i].location;
+              // Only nodes near a crack can have a bond across it.
+              bool near = false;
+              for (const auto &crack : cracks)
+                {
+                  BoundingBox<dim> box = crack.box;
+                  box.extend(reach);
+                  near = near || box.point_inside(x);
+                }
+              if (!near)
+                continue;
+              for (unsigned int k = 0; k < lists.n_bonds(i); ++k)
+                if (cuts(x, nodes[state.neighbor(i, k)].location))
+                  state.break_bond(i, k);
+            }
+      return state.synchronize();
+    }
+
+
+    template <int dim>
+    std::vector<BoundingBox<dim>>
+    parse_boxes(const std::string &text, const std::string &entry)
+    {
+      std::vector<BoundingBox<dim>> boxes;
+      for (const auto &numbers : parse_lists(text, entry))
+        {
+          AssertThrow(numbers.size() == 2 * dim,
+                      ExcInvalidInput(entry,
+                                      text,
+                                      std::string("a box is '") +
+                                        (dim == 2 ? "xmin, ymin, xmax, ymax" :
+                                                    "xmin, ymin, zmin, xmax, "
+                                                    "ymax, zmax") +
+                                        "'; separate boxes with ';'"));
+          Point<dim> lower, upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[d] = numbers[d];
+              upper[d] = numbers[dim + d];
+              AssertThrow(lower[d] < upper[d],
+                          ExcInvalidInput(entry,
+                                          text,
+                                          "give the lower corner first "
+                                          "(xmin < xmax, ...)"));
+            }
+          boxes.emplace_back(std::make_pair(lower, upper));
+        }
+      return boxes;
+    }
+
+
+    template class PreCracks<2>;
+    template class PreCracks<3>;
+    template std::vector<BoundingBox<2>>
+    parse_boxes<2>(const std::string &, const std::string &);
+    template std::vector<BoundingBox<3>>
+    parse_boxes<3>(const std::string &, const std::string &);
+  } // namespace Discretization
+} // namespace PeriDEAL

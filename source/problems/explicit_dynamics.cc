@@ -1,0 +1,718 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <perideal/base/collective_checks.h>
+#include <perideal/base/exceptions.h>
+#include <perideal/problems/explicit_dynamics.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    namespace
+    {
+      std::string
+      to_string(const double x)
+      {
+        std::ostringstream s;
+        s << std::setprecision(6) << x;
+        return s.str();
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("End time",
+                        "1",
+                        Patterns::Double(0),
+                        "Simulated time (s), > 0.");
+      prm.declare_entry(
+        "Time step",
+        "0",
+        Patterns::Double(0),
+        "Time step (s). 0: 'Safety factor' times the stability bound "
+        "2/sqrt(lambda_G) (Gershgorin's bound of the largest eigenvalue of "
+        "M^{-1} K; Silling & Askari 2005 for bond-based models). The step is "
+        "shortened so that a whole number of steps reaches 'End time'.");
+      prm.declare_entry("Safety factor",
+                        "0.9",
+                        Patterns::Double(0, 1),
+                        "Fraction of the stability bound used when 'Time "
+                        "step = 0'; in (0, 1].");
+      prm.declare_entry("Allow unstable time step",
+                        "false",
+                        Patterns::Bool(),
+                        "Accept a 'Time step' above the stability bound (it "
+                        "is an error otherwise). The bound is conservative "
+                        "(by about 1.5x); the printed power-method estimate "
+                        "of the actual limit of velocity Verlet can be a few "
+                        "per cent too large.");
+      prm.declare_entry("Kinematics",
+                        "finite deformation",
+                        Patterns::Selection("finite deformation|small strain"),
+                        "finite deformation: bond forces along the deformed "
+                        "bond, extension |y_j - y_i| - |x_j - x_i| (fracture "
+                        "runs); small strain: the linearised kernel of the "
+                        "quasi-static problem.");
+      prm.declare_entry("Prescribed quantity",
+                        "displacement",
+                        Patterns::Selection("displacement|velocity"),
+                        "What 'Boundary conditions/Dirichlet displacement' "
+                        "prescribes on the nodes of the Dirichlet layers, as "
+                        "a function of x and t: the displacement, or the "
+                        "velocity (the displacement then follows by the "
+                        "midpoint rule).");
+      prm.declare_entry("Load history",
+                        "1",
+                        Patterns::Anything(),
+                        "g(t): the body force and traction of 'Boundary "
+                        "conditions' (evaluated at t = 0) are multiplied by "
+                        "this function of t (muparser syntax), e.g. '1' for "
+                        "a step load, 't < 1e-6 ? t / 1e-6 : 1' for a ramp.");
+      prm.enter_subsection("Initial displacement");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.leave_subsection();
+      prm.enter_subsection("Initial velocity");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.leave_subsection();
+      prm.declare_entry(
+        "Pre-cracks",
+        "",
+        Patterns::Anything(),
+        "Bonds that cross these start broken. 2D: segments 'x1, y1, x2, y2', "
+        "3D: planar polygons 'x1, y1, z1, x2, y2, z2, x3, y3, z3, ...'; "
+        "several separated by ';'. Empty: none.");
+      prm.declare_entry(
+        "No-fail boxes",
+        "",
+        Patterns::Anything(),
+        "Bonds with an end node in one of these boxes never break. 'xmin, "
+        "ymin[, zmin], xmax, ymax[, zmax]', several separated by ';'.");
+      prm.declare_entry("Output every steps",
+                        "0",
+                        Patterns::Integer(0),
+                        "Write PVTU output every this many steps (and at the "
+                        "first and last step). 0: use 'Output interval'.");
+      prm.declare_entry("Output interval",
+                        "0",
+                        Patterns::Double(0),
+                        "Write PVTU output every this much simulated time. "
+                        "0 (and 'Output every steps = 0'): only at the first "
+                        "and last step.");
+      prm.declare_entry("Energy every steps",
+                        "10",
+                        Patterns::Integer(1),
+                        "Record kinetic and elastic energy, external work "
+                        "and broken bonds every this many steps (a row of "
+                        "the energy file; the progress line).");
+      prm.declare_entry("Energy file",
+                        "energies.csv",
+                        Patterns::FileName(),
+                        "CSV of time, kinetic energy, elastic energy, "
+                        "external work, energy balance and broken bonds, in "
+                        "'Output/Directory'. Empty: not written.");
+      prm.declare_entry("Progress interval",
+                        "5",
+                        Patterns::Double(0),
+                        "Print a progress line on rank 0 at most every this "
+                        "many seconds of wall time (at energy rows).");
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      end_time        = prm.get_double("End time");
+      given_time_step = prm.get_double("Time step");
+      safety_factor   = prm.get_double("Safety factor");
+      AssertThrow(end_time > 0,
+                  ExcInvalidInput("explicit dynamics/End time",
+                                  prm.get("End time"),
+                                  "give a simulated time > 0"));
+      AssertThrow(safety_factor > 0,
+                  ExcInvalidInput("explicit dynamics/Safety factor",
+                                  prm.get("Safety factor"),
+                                  "give a fraction in (0, 1]"));
+      allow_unstable      = prm.get_bool("Allow unstable time step");
+      finite_kinematics   = prm.get("Kinematics") == "finite deformation";
+      prescribe_velocity  = prm.get("Prescribed quantity") == "velocity";
+      output_every_steps  = prm.get_integer("Output every steps");
+      output_interval     = prm.get_double("Output interval");
+      energy_every_steps  = prm.get_integer("Energy every steps");
+      energy_file         = prm.get("Energy file");
+      progress_interval_s = prm.get_double("Progress interval");
+      load_history        = std::make_unique<FunctionParser<1>>(1);
+      try
+        {
+          load_history->initialize("x,t",
+                                   prm.get("Load history"),
+                                   std::map<std::string, double>(),
+                                   true);
+          // muparser parses at the first evaluation.
+          load_history->value(Point<1>());
+        }
+      catch (...)
+        {
+          AssertThrow(false,
+                      ExcInvalidInput("explicit dynamics/Load history",
+                                      prm.get("Load history"),
+                                      "give a function of t in muparser "
+                                      "syntax"));
+        }
+      for (const auto &[name, function] :
+           {std::make_pair("Initial displacement", &initial_displacement),
+            std::make_pair("Initial velocity", &initial_velocity)})
+        {
+          prm.enter_subsection(name);
+          *function = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+          (*function)->parse_parameters(prm);
+          prm.leave_subsection();
+        }
+      pre_crack_text = prm.get("Pre-cracks");
+      pre_cracks.parse(pre_crack_text, "explicit dynamics/Pre-cracks");
+      no_fail_text = prm.get("No-fail boxes");
+      no_fail_boxes =
+        Discretization::parse_boxes<dim>(no_fail_text,
+                                         "explicit dynamics/No-fail boxes");
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::check_input(const Simulator<dim> &simulator) const
+    {
+      AssertThrow(simulator.get_boundary_treatment_name() == "none",
+                  ExcInvalidInput("Boundary treatment/Treatment",
+                                  simulator.get_boundary_treatment_name(),
+                                  "explicit dynamics supports the 'none' "
+                                  "treatment only so far"));
+      AssertThrow(simulator.get_node_data_file().empty(),
+                  ExcInvalidInput("Output/Node data file",
+                                  simulator.get_node_data_file(),
+                                  "the node data file is written by the "
+                                  "quasi-static problem only; leave it "
+                                  "empty"));
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::run(Simulator<dim> &simulator)
+    {
+      setup(simulator);
+      choose_time_step(simulator);
+      initialize(simulator);
+      record_energies(simulator);
+      write_output(simulator);
+      TimerOutput::Scope scope(simulator.get_timer(), "time steps");
+      loop_start      = simulator.elapsed();
+      loop_start_step = 0;
+      last_progress   = loop_start;
+      while (step_number < n_steps)
+        {
+          step(simulator);
+          const bool last = step_number == n_steps;
+          if (last || step_number % energy_every_steps == 0)
+            {
+              record_energies(simulator);
+              if (last ||
+                  simulator.elapsed() - last_progress >= progress_interval_s)
+                print_progress_line(simulator);
+            }
+          const bool by_steps =
+            output_every_steps > 0 && step_number % output_every_steps == 0;
+          const bool by_time =
+            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
+          if (last || by_steps || by_time)
+            {
+              TimerOutput::Scope out(simulator.get_timer(), "output");
+              write_output(simulator);
+            }
+        }
+      auto &summary = simulator.get_summary();
+      summary.n_bonds =
+        Utilities::MPI::sum(simulator.get_neighbor_lists().n_owned_bonds(),
+                            simulator.get_communicator());
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::setup(Simulator<dim> &simulator)
+    {
+      simulator.setup_neighbor_lists(false);
+      TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
+      const auto        &nodes   = simulator.get_nodes();
+      const auto        &lists   = simulator.get_neighbor_lists();
+      const auto        &model   = simulator.get_model();
+      const double       horizon = simulator.get_horizon();
+      const MPI_Comm     comm    = simulator.get_communicator();
+      bond_state.reinit(nodes, lists);
+      bond_operator.reinit(nodes, lists, model, horizon, &bond_state);
+
+      // Failure: the model's critical stretch, none in the no-fail boxes.
+      const double        s0 = model.critical_stretch(horizon);
+      std::vector<double> critical(nodes.size(), s0);
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        for (const auto &box : no_fail_boxes)
+          if (box.point_inside(nodes[i].location))
+            critical[i] = std::numeric_limits<double>::infinity();
+      bond_operator.set_kinematics(finite_kinematics, critical);
+
+      double h = 0;
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        h = std::max(h, std::pow(nodes[i].volume(), 1. / dim));
+      h = Utilities::MPI::max(h, comm);
+      const std::size_t n_cut =
+        pre_cracks.break_bonds(nodes,
+                               lists,
+                               bond_state,
+                               horizon + 2 * std::sqrt(dim) * h);
+      AssertThrow(pre_cracks.empty() || n_cut > 0,
+                  ExcInvalidInput("explicit dynamics/Pre-cracks",
+                                  pre_crack_text,
+                                  "no bond crosses the pre-cracks: they lie "
+                                  "outside the body"));
+      bond_operator.update_bond_state();
+      broken_bonds = n_cut;
+
+      // Constraints, masses and loads.
+      simulator.get_boundary_conditions().make_constraints(
+        simulator.get_dof_handler(),
+        nodes,
+        horizon,
+        constraints);
+      bond_operator.initialize_dof_vector(u);
+      for (auto *vector : {&v, &a, &force, &previous_force, &load, &mass})
+        bond_operator.initialize_dof_vector(*vector);
+      const auto &partitioner = bond_operator.get_partitioner();
+      is_prescribed.assign(u.locally_owned_size(), false);
+      prescribed.clear();
+      const double rho = model.density();
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            const unsigned int index =
+              partitioner->global_to_local(nodes[i].dofs[c]);
+            mass.local_element(index) = rho * nodes[i].volume();
+            if (constraints.is_constrained(nodes[i].dofs[c]))
+              {
+                prescribed.push_back({index, i, c});
+                is_prescribed[index] = true;
+              }
+          }
+      TrilinosWrappers::MPI::Vector nodal_load(
+        simulator.get_dof_handler().locally_owned_dofs(),
+        comm);
+      simulator.get_boundary_conditions().add_load(simulator.get_dof_handler(),
+                                                   nodes,
+                                                   constraints,
+                                                   nodal_load);
+      for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
+        load[dof] = nodal_load[dof];
+
+      const unsigned int n_stencil =
+        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), comm);
+      const std::size_t visits =
+        Utilities::MPI::sum(bond_operator.n_bond_visits(), comm);
+      simulator.get_pcout()
+        << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+        << simulator.elapsed()
+        << " s] explicit dynamics: " << simulator.get_summary().n_nodes
+        << " nodes (" << n_stencil << " on the shared stencil), " << visits
+        << " bond visits per step, "
+        << (finite_kinematics ? "finite deformation" : "small strain")
+        << ", critical stretch "
+        << (std::isfinite(s0) ? to_string(s0) :
+                                std::string("none (no failure)"))
+        << ", " << n_cut << " bonds cut by pre-cracks, "
+        << Utilities::MPI::sum(prescribed.size(), comm) << " prescribed DoFs, "
+        << MultithreadInfo::n_threads() << " thread(s) per process"
+        << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::choose_time_step(Simulator<dim> &simulator)
+    {
+      const double rho    = simulator.get_model().density();
+      const double lambda = bond_operator.gershgorin_eigenvalue_bound(rho);
+      const double power  = bond_operator.estimate_largest_eigenvalue(rho, 60);
+      dt_bound            = 2 / std::sqrt(lambda);
+      dt_estimate         = 2 / std::sqrt(power);
+      AssertThrow(std::isfinite(dt_bound) && dt_bound > 0,
+                  ExcMessage("The stability bound of the time step is not "
+                             "finite: the operator has no bonds?"));
+      if (given_time_step > 0)
+        AssertThrow(
+          given_time_step <= dt_bound || allow_unstable,
+          ExcInvalidInput("explicit dynamics/Time step",
+                          to_string(given_time_step),
+                          "the step exceeds the stability bound " +
+                            to_string(dt_bound) +
+                            " s (the power-method estimate of the limit is " +
+                            to_string(dt_estimate) +
+                            " s); give a smaller step, 0 for the bound times "
+                            "'Safety factor', or set 'Allow unstable time "
+                            "step = true'"));
+      const double wanted =
+        given_time_step > 0 ? given_time_step : safety_factor * dt_bound;
+      n_steps = static_cast<unsigned int>(std::ceil(end_time / wanted - 1e-9));
+      n_steps = std::max(n_steps, 1u);
+      dt      = end_time / n_steps;
+      next_output_time = output_interval;
+      simulator.get_pcout()
+        << "           time step " << to_string(dt) << " s (" << n_steps
+        << " steps to " << to_string(end_time) << " s); stability bound "
+        << to_string(dt_bound)
+        << " s, power-method estimate of the actual limit (may be a few per cent "
+           "too large) "
+        << to_string(dt_estimate) << " s" << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::initialize(Simulator<dim> &simulator)
+    {
+      const auto    &nodes = simulator.get_nodes();
+      Vector<double> value(dim);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          initial_displacement->vector_value(nodes[i].location, value);
+          for (unsigned int c = 0; c < dim; ++c)
+            u[nodes[i].dofs[c]] = value[c];
+          initial_velocity->vector_value(nodes[i].location, value);
+          for (unsigned int c = 0; c < dim; ++c)
+            v[nodes[i].dofs[c]] = value[c];
+        }
+      time = 0;
+      simulator.get_boundary_conditions().set_time(0);
+      if (!prescribe_velocity)
+        for (const auto &p : prescribed)
+          u.local_element(p.index) =
+            simulator.get_boundary_conditions().dirichlet_value(
+              nodes[p.node].location)[p.component];
+      else
+        for (const auto &p : prescribed)
+          v.local_element(p.index) =
+            simulator.get_boundary_conditions().dirichlet_value(
+              nodes[p.node].location)[p.component];
+      u.update_ghost_values();
+      compute_acceleration(simulator);
+      check_finite(simulator);
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::compute_acceleration(Simulator<dim> &simulator)
+    {
+      bond_operator.apply(u, force);
+      broken_bonds += bond_operator.commit_broken_bonds(bond_state);
+      load_history->set_time(time);
+      load_factor = load_history->value(Point<1>());
+      (void)simulator;
+      const unsigned int n = u.locally_owned_size();
+      for (unsigned int k = 0; k < n; ++k)
+        a.local_element(k) =
+          is_prescribed[k] ?
+            0. :
+            (force.local_element(k) + load_factor * load.local_element(k)) /
+              mass.local_element(k);
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::step(Simulator<dim> &simulator)
+    {
+      const unsigned int n        = u.locally_owned_size();
+      const double       old_load = load_factor;
+      double             work     = 0;
+      // Half step of the velocity, full step of the displacement.
+      for (unsigned int k = 0; k < n; ++k)
+        if (!is_prescribed[k])
+          {
+            const double half =
+              v.local_element(k) + 0.5 * dt * a.local_element(k);
+            v.local_element(k) = half;
+            u.local_element(k) += dt * half;
+            work += 0.5 * old_load * load.local_element(k) * dt * half;
+          }
+      // Prescribed components at the new time; their old values and forces
+      // for the work of the reactions.
+      std::vector<double> old_u(prescribed.size()), old_v(prescribed.size()),
+        old_f(prescribed.size());
+      for (unsigned int q = 0; q < prescribed.size(); ++q)
+        {
+          old_u[q] = u.local_element(prescribed[q].index);
+          old_v[q] = v.local_element(prescribed[q].index);
+          old_f[q] = force.local_element(prescribed[q].index);
+        }
+      time += dt;
+      ++step_number;
+      apply_prescribed(simulator, time, dt);
+      u.update_ghost_values();
+      compute_acceleration(simulator);
+      for (unsigned int k = 0; k < n; ++k)
+        if (!is_prescribed[k])
+          {
+            work += 0.5 * load_factor * load.local_element(k) * dt *
+                    v.local_element(k);
+            v.local_element(k) += 0.5 * dt * a.local_element(k);
+          }
+      for (unsigned int q = 0; q < prescribed.size(); ++q)
+        {
+          const unsigned int k = prescribed[q].index;
+          const double       reaction =
+            mass.local_element(k) * (v.local_element(k) - old_v[q]) / dt -
+            0.5 * (old_f[q] + force.local_element(k));
+          work += reaction * (u.local_element(k) - old_u[q]);
+        }
+      external_work += Utilities::MPI::sum(work, simulator.get_communicator());
+      check_finite(simulator);
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::apply_prescribed(Simulator<dim> &simulator,
+                                            const double    t,
+                                            const double    h)
+    {
+      // Only the owned prescribed nodes: no communication.
+      auto       &conditions = simulator.get_boundary_conditions();
+      const auto &nodes      = simulator.get_nodes();
+      const auto  values_at  = [&](const double when) {
+        conditions.set_time(when);
+        std::vector<double> values(prescribed.size());
+        unsigned int        node = numbers::invalid_unsigned_int;
+        Tensor<1, dim>      g;
+        for (unsigned int q = 0; q < prescribed.size(); ++q)
+          {
+            if (prescribed[q].node != node)
+              {
+                node = prescribed[q].node;
+                g    = conditions.dirichlet_value(nodes[node].location);
+              }
+            values[q] = g[prescribed[q].component];
+          }
+        return values;
+      };
+      if (prescribe_velocity)
+        {
+          const auto middle = values_at(t - 0.5 * h);
+          const auto end    = values_at(t);
+          for (unsigned int q = 0; q < prescribed.size(); ++q)
+            {
+              u.local_element(prescribed[q].index) += h * middle[q];
+              v.local_element(prescribed[q].index) = end[q];
+            }
+        }
+      else
+        {
+          const auto end = values_at(t);
+          for (unsigned int q = 0; q < prescribed.size(); ++q)
+            {
+              const unsigned int k = prescribed[q].index;
+              v.local_element(k)   = (end[q] - u.local_element(k)) / h;
+              u.local_element(k)   = end[q];
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::record_energies(Simulator<dim> &simulator)
+    {
+      TimerOutput::Scope scope(simulator.get_timer(), "energies");
+      const MPI_Comm     comm    = simulator.get_communicator();
+      double             kinetic = 0;
+      for (unsigned int k = 0; k < u.locally_owned_size(); ++k)
+        kinetic +=
+          0.5 * mass.local_element(k) * std::pow(v.local_element(k), 2);
+      kinetic              = Utilities::MPI::sum(kinetic, comm);
+      const double elastic = bond_operator.elastic_energy(u);
+      // Same values on every process: no hang.
+      AssertThrow(std::isfinite(kinetic) && std::isfinite(elastic),
+                  ExcMessage("The energy is not finite at step " +
+                             std::to_string(step_number) +
+                             " (t = " + to_string(time) +
+                             " s): the run is unstable. Reduce 'explicit "
+                             "dynamics/Time step' (stability bound " +
+                             to_string(dt_bound) +
+                             " s) or check the loads and material "
+                             "constants. The output written before is "
+                             "complete."));
+      energy_rows.push_back({time,
+                             double(step_number),
+                             kinetic,
+                             elastic,
+                             external_work,
+                             kinetic + elastic - external_work,
+                             double(broken_bonds)});
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::print_progress_line(Simulator<dim> &simulator)
+    {
+      const double now = simulator.elapsed();
+      last_progress    = now;
+      const double rate =
+        (step_number - loop_start_step) / std::max(now - loop_start, 1e-9);
+      const auto &row = energy_rows.back();
+      simulator.get_pcout()
+        << "[" << std::setw(8) << std::fixed << std::setprecision(2) << now
+        << " s] step " << step_number << "/" << n_steps
+        << ", t = " << std::scientific << std::setprecision(4) << time
+        << " s, kinetic " << row[2] << ", elastic " << row[3]
+        << ", external work " << row[4] << ", broken bonds " << broken_bonds
+        << ", " << std::fixed << std::setprecision(1) << rate << " steps/s, "
+        << std::setprecision(0)
+        << (n_steps - step_number) / std::max(rate, 1e-9) << " s left"
+        << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::write_output(Simulator<dim> &simulator)
+    {
+      const auto    &nodes = simulator.get_nodes();
+      const MPI_Comm comm  = simulator.get_communicator();
+      if (output_interval > 0)
+        while (next_output_time <= time + 1e-12 * dt)
+          next_output_time += output_interval;
+      const auto &output = simulator.get_output();
+      if (output.enabled())
+        {
+          const IndexSet &owned =
+            simulator.get_dof_handler().locally_owned_dofs();
+          TrilinosWrappers::MPI::Vector owned_u(owned, comm),
+            owned_v(owned, comm), ghosted_u, ghosted_v;
+          for (const auto dof : owned)
+            {
+              owned_u[dof] = u[dof];
+              owned_v[dof] = v[dof];
+            }
+          owned_u.compress(VectorOperation::insert);
+          owned_v.compress(VectorOperation::insert);
+          ghosted_u.reinit(owned, nodes.relevant_dofs(), comm);
+          ghosted_v.reinit(owned, nodes.relevant_dofs(), comm);
+          ghosted_u = owned_u;
+          ghosted_v = owned_v;
+          IO::NodeField damage{"damage", {}}, broken{"broken_bonds", {}},
+            rank{"mpi_rank", {}};
+          const double this_rank = Utilities::MPI::this_mpi_process(comm);
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            {
+              damage.values.push_back(bond_state.damage(i));
+              broken.values.push_back(bond_state.n_broken(i));
+              rank.values.push_back(this_rank);
+            }
+          const std::string record = output.write(simulator.get_dof_handler(),
+                                                  nodes,
+                                                  ghosted_u,
+                                                  {damage, broken, rank},
+                                                  records.size(),
+                                                  {{"velocity", &ghosted_v}});
+          records.emplace_back(time, record);
+          output.write_time_series(records, comm);
+        }
+      if (!energy_file.empty())
+        {
+          std::string error;
+          if (Utilities::MPI::this_mpi_process(comm) == 0)
+            {
+              const std::string path = output.directory() + "/" + energy_file;
+              std::error_code   code;
+              std::filesystem::create_directories(output.directory(), code);
+              error = write_then_rename(path, [&](std::ostream &out) {
+                out << "time,step,kinetic_energy,elastic_energy,"
+                       "external_work,energy_balance,broken_bonds\n"
+                    << std::setprecision(12);
+                for (const auto &row : energy_rows)
+                  {
+                    for (unsigned int k = 0; k < row.size(); ++k)
+                      out << (k > 0 ? "," : "") << row[k];
+                    out << '\n';
+                  }
+              });
+              if (!error.empty())
+                error = "Invalid value '" + path +
+                        "' for the parameter 'explicit dynamics/Energy "
+                        "file': " +
+                        error + ".";
+            }
+          throw_on_any_rank(error, comm);
+        }
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::check_finite(Simulator<dim> &simulator) const
+    {
+      const auto    &nodes = simulator.get_nodes();
+      const MPI_Comm comm  = simulator.get_communicator();
+      // The first owned node (lowest DoF) with a value that is not finite.
+      types::global_dof_index bad      = numbers::invalid_dof_index;
+      unsigned int            bad_node = 0;
+      for (unsigned int i = 0;
+           i < nodes.n_owned() && bad == numbers::invalid_dof_index;
+           ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (!std::isfinite(u[nodes[i].dofs[c]]) ||
+              !std::isfinite(v[nodes[i].dofs[c]]))
+            {
+              bad      = nodes[i].dofs[0];
+              bad_node = i;
+              break;
+            }
+      const auto first = Utilities::MPI::min(bad, comm);
+      if (first == numbers::invalid_dof_index)
+        return;
+      std::string message;
+      if (bad == first)
+        {
+          std::ostringstream s;
+          s << "The displacement or velocity is not finite at step "
+            << step_number << " (t = " << time << " s) at the node at ("
+            << nodes[bad_node].location
+            << "). The run is unstable: reduce 'explicit dynamics/Time "
+               "step' (stability bound "
+            << dt_bound
+            << " s) or check the loads and material constants. The output "
+               "written before this step is complete.";
+          message = s.str();
+        }
+      throw_on_any_rank(message, comm);
+    }
+
+
+    template class ExplicitDynamics<2>;
+    template class ExplicitDynamics<3>;
+  } // namespace Problems
+} // namespace PeriDEAL
+
+PERIDEAL_REGISTER_PROBLEM_TYPE(
+  PeriDEAL::Problems::ExplicitDynamics,
+  "explicit dynamics",
+  "Explicit dynamics with brittle fracture: velocity Verlet on the PD "
+  "bond forces (finite or linearised kinematics), bond failure at a "
+  "critical stretch, pre-cracks, PVD time series and energy CSV.")
