@@ -153,6 +153,38 @@ namespace PeriDEAL
 
 
     template <int dim>
+    void
+    BondState<dim>::save(std::ostream &out) const
+    {
+      const std::uint64_t sizes[2] = {first.size(), bits.size()};
+      out.write(reinterpret_cast<const char *>(sizes), sizeof(sizes));
+      out.write(reinterpret_cast<const char *>(bits.data()),
+                bits.size() * sizeof(std::uint64_t));
+      out.write(reinterpret_cast<const char *>(n_broken_of.data()),
+                n_broken_of.size() * sizeof(unsigned int));
+    }
+
+
+    template <int dim>
+    void
+    BondState<dim>::load(std::istream &in)
+    {
+      std::uint64_t sizes[2] = {0, 0};
+      in.read(reinterpret_cast<char *>(sizes), sizeof(sizes));
+      AssertThrow(in && sizes[0] == first.size() && sizes[1] == bits.size(),
+                  ExcMessage("The bond state of the checkpoint does not fit "
+                             "the bonds of this run (another mesh, horizon, "
+                             "partial-volume rule or number of processes)."));
+      in.read(reinterpret_cast<char *>(bits.data()),
+              bits.size() * sizeof(std::uint64_t));
+      in.read(reinterpret_cast<char *>(n_broken_of.data()),
+              n_broken_of.size() * sizeof(unsigned int));
+      AssertThrow(in, ExcMessage("The checkpoint's bond state is truncated."));
+      pending.clear();
+    }
+
+
+    template <int dim>
     std::size_t
     BondState<dim>::n_broken_global() const
     {

@@ -269,11 +269,37 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    std::vector<Point<dim>>
+    parse_points(const std::string &text, const std::string &entry)
+    {
+      std::vector<Point<dim>> points;
+      for (const auto &numbers : parse_lists(text, entry))
+        {
+          AssertThrow(numbers.size() == dim,
+                      ExcInvalidInput(entry,
+                                      text,
+                                      std::string("a point is '") +
+                                        (dim == 2 ? "x, y" : "x, y, z") +
+                                        "'; separate points with ';'"));
+          Point<dim> p;
+          for (unsigned int d = 0; d < dim; ++d)
+            p[d] = numbers[d];
+          points.push_back(p);
+        }
+      return points;
+    }
+
+
     template class PreCracks<2>;
     template class PreCracks<3>;
     template std::vector<BoundingBox<2>>
     parse_boxes<2>(const std::string &, const std::string &);
     template std::vector<BoundingBox<3>>
     parse_boxes<3>(const std::string &, const std::string &);
+    template std::vector<Point<2>>
+    parse_points<2>(const std::string &, const std::string &);
+    template std::vector<Point<3>>
+    parse_points<3>(const std::string &, const std::string &);
   } // namespace Discretization
 } // namespace PeriDEAL

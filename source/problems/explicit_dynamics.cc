@@ -97,6 +97,13 @@ namespace PeriDEAL
         Patterns::Anything(),
         "Bonds with an end node in one of these boxes never break. 'xmin, "
         "ymin[, zmin], xmax, ymax[, zmax]', several separated by ';'.");
+      prm.declare_entry("Probe points",
+                        "",
+                        Patterns::Anything(),
+                        "Points 'x, y[, z]' separated by ';': the "
+                        "displacement of the node nearest to each is added "
+                        "to every row of the energy file (columns "
+                        "probe<k>_u<c>).");
       prm.declare_entry("Output every steps",
                         "0",
                         Patterns::Integer(0),
@@ -120,6 +127,30 @@ namespace PeriDEAL
                         "CSV of time, kinetic energy, elastic energy, "
                         "external work, energy balance and broken bonds, in "
                         "'Output/Directory'. Empty: not written.");
+      prm.declare_entry("Checkpoint every steps",
+                        "0",
+                        Patterns::Integer(0),
+                        "Write a checkpoint (<Output/Directory>/checkpoint) "
+                        "every this many steps. 0: not by steps.");
+      prm.declare_entry("Checkpoint interval",
+                        "0",
+                        Patterns::Double(0),
+                        "Write a checkpoint at most every this many minutes "
+                        "of wall time (checked at energy rows). 0: not by "
+                        "time.");
+      prm.declare_entry("Steps per run",
+                        "0",
+                        Patterns::Integer(0),
+                        "Stop after this many steps with a checkpoint, to "
+                        "run a long simulation in chunks (resume with "
+                        "'Resume from checkpoint = true'). 0: run to 'End "
+                        "time'.");
+      prm.declare_entry("Resume from checkpoint",
+                        "false",
+                        Patterns::Bool(),
+                        "Continue from <Output/Directory>/checkpoint, "
+                        "written by a run of the same input on the same "
+                        "number of processes.");
       prm.declare_entry("Progress interval",
                         "5",
                         Patterns::Double(0),
@@ -143,15 +174,19 @@ namespace PeriDEAL
                   ExcInvalidInput("explicit dynamics/Safety factor",
                                   prm.get("Safety factor"),
                                   "give a fraction in (0, 1]"));
-      allow_unstable      = prm.get_bool("Allow unstable time step");
-      finite_kinematics   = prm.get("Kinematics") == "finite deformation";
-      prescribe_velocity  = prm.get("Prescribed quantity") == "velocity";
-      output_every_steps  = prm.get_integer("Output every steps");
-      output_interval     = prm.get_double("Output interval");
-      energy_every_steps  = prm.get_integer("Energy every steps");
-      energy_file         = prm.get("Energy file");
-      progress_interval_s = prm.get_double("Progress interval");
-      load_history        = std::make_unique<FunctionParser<1>>(1);
+      allow_unstable         = prm.get_bool("Allow unstable time step");
+      finite_kinematics      = prm.get("Kinematics") == "finite deformation";
+      prescribe_velocity     = prm.get("Prescribed quantity") == "velocity";
+      output_every_steps     = prm.get_integer("Output every steps");
+      output_interval        = prm.get_double("Output interval");
+      energy_every_steps     = prm.get_integer("Energy every steps");
+      energy_file            = prm.get("Energy file");
+      progress_interval_s    = prm.get_double("Progress interval");
+      checkpoint_every_steps = prm.get_integer("Checkpoint every steps");
+      checkpoint_minutes     = prm.get_double("Checkpoint interval");
+      steps_per_run          = prm.get_integer("Steps per run");
+      resume                 = prm.get_bool("Resume from checkpoint");
+      load_history           = std::make_unique<FunctionParser<1>>(1);
       try
         {
           load_history->initialize("x,t",
@@ -184,6 +219,9 @@ namespace PeriDEAL
       no_fail_boxes =
         Discretization::parse_boxes<dim>(no_fail_text,
                                          "explicit dynamics/No-fail boxes");
+      probe_points =
+        Discretization::parse_points<dim>(prm.get("Probe points"),
+                                          "explicit dynamics/Probe points");
     }
 
 
@@ -211,23 +249,38 @@ namespace PeriDEAL
     {
       setup(simulator);
       choose_time_step(simulator);
-      initialize(simulator);
-      record_energies(simulator);
-      write_output(simulator);
+      if (resume)
+        read_checkpoint(simulator);
+      else
+        {
+          initialize(simulator);
+          record_energies(simulator);
+          write_output(simulator);
+        }
       TimerOutput::Scope scope(simulator.get_timer(), "time steps");
-      loop_start      = simulator.elapsed();
-      loop_start_step = 0;
-      last_progress   = loop_start;
+      loop_start          = simulator.elapsed();
+      loop_start_step     = step_number;
+      last_progress       = loop_start;
+      last_checkpoint     = loop_start;
+      const MPI_Comm comm = simulator.get_communicator();
       while (step_number < n_steps)
         {
           step(simulator);
           const bool last = step_number == n_steps;
-          if (last || step_number % energy_every_steps == 0)
+          const bool stop = !last && steps_per_run > 0 &&
+                            step_number - loop_start_step == steps_per_run;
+          bool by_wall_time = false;
+          if (last || stop || step_number % energy_every_steps == 0)
             {
               record_energies(simulator);
               if (last ||
                   simulator.elapsed() - last_progress >= progress_interval_s)
                 print_progress_line(simulator);
+              // The same decision on every process.
+              by_wall_time =
+                checkpoint_minutes > 0 &&
+                Utilities::MPI::max(simulator.elapsed() - last_checkpoint,
+                                    comm) >= 60 * checkpoint_minutes;
             }
           const bool by_steps =
             output_every_steps > 0 && step_number % output_every_steps == 0;
@@ -237,6 +290,23 @@ namespace PeriDEAL
             {
               TimerOutput::Scope out(simulator.get_timer(), "output");
               write_output(simulator);
+            }
+          if (!last && (stop || by_wall_time ||
+                        (checkpoint_every_steps > 0 &&
+                         step_number % checkpoint_every_steps == 0)))
+            {
+              TimerOutput::Scope out(simulator.get_timer(), "checkpoint");
+              write_checkpoint(simulator);
+              last_checkpoint = simulator.elapsed();
+            }
+          if (stop)
+            {
+              simulator.get_pcout()
+                << "           stopped after " << steps_per_run
+                << " steps ('Steps per run') at step " << step_number << "/"
+                << n_steps << "; continue with 'Resume from checkpoint = true'."
+                << std::endl;
+              break;
             }
         }
       auto &summary = simulator.get_summary();
@@ -320,6 +390,29 @@ namespace PeriDEAL
                                                    nodal_load);
       for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
         load[dof] = nodal_load[dof];
+
+      // Probes: the nearest node over all processes (ties: lowest DoF).
+      probe_nodes.assign(probe_points.size(), numbers::invalid_unsigned_int);
+      for (unsigned int k = 0; k < probe_points.size(); ++k)
+        {
+          double       best = std::numeric_limits<double>::max();
+          unsigned int node = numbers::invalid_unsigned_int;
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            {
+              const double d = nodes[i].location.distance(probe_points[k]);
+              if (d < best)
+                {
+                  best = d;
+                  node = i;
+                }
+            }
+          const double closest = Utilities::MPI::min(best, comm);
+          const types::global_dof_index mine =
+            best == closest ? nodes[node].dofs[0] : numbers::invalid_dof_index;
+          const auto winner = Utilities::MPI::min(mine, comm);
+          if (mine == winner && mine != numbers::invalid_dof_index)
+            probe_nodes[k] = node;
+        }
 
       const unsigned int n_stencil =
         Utilities::MPI::sum(bond_operator.n_stencil_nodes(), comm);
@@ -564,6 +657,19 @@ namespace PeriDEAL
                              external_work,
                              kinetic + elastic - external_work,
                              double(broken_bonds)});
+      if (!probe_points.empty())
+        {
+          const auto         &nodes = simulator.get_nodes();
+          std::vector<double> probes(probe_points.size() * dim, 0.);
+          for (unsigned int k = 0; k < probe_points.size(); ++k)
+            if (probe_nodes[k] != numbers::invalid_unsigned_int)
+              for (unsigned int c = 0; c < dim; ++c)
+                probes[k * dim + c] = u[nodes[probe_nodes[k]].dofs[c]];
+          Utilities::MPI::sum(probes, comm, probes);
+          energy_rows.back().insert(energy_rows.back().end(),
+                                    probes.begin(),
+                                    probes.end());
+        }
     }
 
 
@@ -644,8 +750,12 @@ namespace PeriDEAL
               std::filesystem::create_directories(output.directory(), code);
               error = write_then_rename(path, [&](std::ostream &out) {
                 out << "time,step,kinetic_energy,elastic_energy,"
-                       "external_work,energy_balance,broken_bonds\n"
-                    << std::setprecision(12);
+                       "external_work,energy_balance,broken_bonds";
+                for (unsigned int k = 0; k < probe_points.size(); ++k)
+                  for (unsigned int c = 0; c < dim; ++c)
+                    out << ",probe" << k << "_u"
+                        << "xyz"[c];
+                out << '\n' << std::setprecision(12);
                 for (const auto &row : energy_rows)
                   {
                     for (unsigned int k = 0; k < row.size(); ++k)

@@ -5,6 +5,8 @@
 #include <perideal/discretization/node_set.h>
 
 #include <cstdint>
+#include <istream>
+#include <ostream>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -91,6 +93,20 @@ namespace PeriDEAL
        */
       int
       bond_index(const unsigned int i, const unsigned int j) const;
+
+      /**
+       * Write the state of this process (the bits of every node with a
+       * list) for a checkpoint.
+       */
+      void
+      save(std::ostream &out) const;
+
+      /**
+       * Read what save() wrote on a process with the same nodes and lists
+       * (same mesh, same partition); throws if the sizes differ.
+       */
+      void
+      load(std::istream &in);
 
       /// Number of broken bond pairs over all processes, counted at owned
       /// nodes (each pair once per end).

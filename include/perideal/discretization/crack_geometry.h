@@ -80,6 +80,11 @@ namespace PeriDEAL
     template <int dim>
     std::vector<BoundingBox<dim>>
     parse_boxes(const std::string &text, const std::string &entry);
+
+    /// Points given as "x, y[, z]" separated by ';'.
+    template <int dim>
+    std::vector<Point<dim>>
+    parse_points(const std::string &text, const std::string &entry);
   } // namespace Discretization
 } // namespace PeriDEAL
 

@@ -114,6 +114,21 @@ namespace PeriDEAL
       void
       print_progress_line(Simulator<dim> &simulator);
 
+      /**
+       * Write the state (u, v, a, forces and bond state of every process,
+       * time, counters, energy rows and output records) to
+       * <output>/checkpoint: into checkpoint.new, then renamed, so that a
+       * run killed while writing keeps its last good checkpoint
+       * (explicit_dynamics_checkpoint.cc). Collective.
+       */
+      void
+      write_checkpoint(Simulator<dim> &simulator);
+
+      /// Read what write_checkpoint() wrote (same input, same number of
+      /// processes). Collective.
+      void
+      read_checkpoint(Simulator<dim> &simulator);
+
       /// Stop with the step and node named when a value is not finite
       /// (collective).
       void
@@ -131,12 +146,21 @@ namespace PeriDEAL
       unsigned int energy_every_steps  = 10;
       double       progress_interval_s = 5;
       std::string  energy_file;
+      unsigned int checkpoint_every_steps = 0;
+      double       checkpoint_minutes     = 0;
+      bool         resume                 = false;
+      unsigned int steps_per_run          = 0;
+      double       last_checkpoint        = 0;
       std::string  pre_crack_text, no_fail_text;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity;
       std::unique_ptr<FunctionParser<1>>              load_history;
       Discretization::PreCracks<dim>                  pre_cracks;
       std::vector<BoundingBox<dim>>                   no_fail_boxes;
+      std::vector<Point<dim>>                         probe_points;
+      /// Per probe: the local index of the nearest node if this process
+      /// owns it, else invalid.
+      std::vector<unsigned int> probe_nodes;
 
       // State.
       Discretization::BondState<dim> bond_state;

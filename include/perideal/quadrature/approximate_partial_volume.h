@@ -57,6 +57,29 @@ namespace PeriDEAL
       static void
       declare_parameters(ParameterHandler &prm);
     };
+
+    /**
+     * The volume reduction of LAMMPS's PERI package (pair_style peri/pmb,
+     * peri/lps): with r the distance from the node to the cell centre and h
+     * the cell side, the weight is 1 for \f$r < \delta - h/2\f$,
+     * \f$(\delta + h/2 - r)/h\f$ for \f$\delta - h/2 \le r \le \delta\f$
+     * and 0 beyond \f$\delta\f$: ApproximatePartialVolume cut at the
+     * horizon. It exists to run the same discrete problem as LAMMPS side by
+     * side (bench/dynamics); it is not a better rule.
+     */
+    template <int dim>
+    class LammpsPartialVolume : public PartialVolume<dim>
+    {
+    public:
+      double
+      weight(const Point<dim>       &node,
+             const double            horizon,
+             const BoundingBox<dim> &cell) const override;
+
+      /// No parameters.
+      static void
+      declare_parameters(ParameterHandler &prm);
+    };
   } // namespace Quadrature
 } // namespace PeriDEAL
 
