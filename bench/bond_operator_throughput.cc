@@ -89,7 +89,8 @@ namespace
           const unsigned int refinements,
           const double       m_ratio,
           const unsigned int repetitions,
-          const bool         with_reference)
+          const bool         with_reference,
+          const bool         fracture)
   {
     const MPI_Comm                            comm = MPI_COMM_WORLD;
     parallel::distributed::Triangulation<dim> tria(comm);
@@ -120,12 +121,16 @@ namespace
                  with_reference);
     Operators::BondOperator<dim> op;
     op.reinit(nodes, lists, *model, horizon);
+    // The fracture kernel: finite kinematics and the failure test on every
+    // bond (a critical stretch no bond reaches here).
+    if (fracture)
+      op.set_kinematics(true, std::vector<double>(nodes.size(), 1.));
 
     typename Operators::BondOperator<dim>::VectorType u, f;
     op.initialize_dof_vector(u);
     op.initialize_dof_vector(f);
     for (unsigned int k = 0; k < u.locally_owned_size(); ++k)
-      u.local_element(k) = std::sin(0.1 * k);
+      u.local_element(k) = (fracture ? 1e-3 * h : 1.) * std::sin(0.1 * k);
     u.update_ghost_values();
     op.apply(u, f);
     double best = 1e300;
@@ -201,7 +206,7 @@ main(int argc, char **argv)
   if (root)
     {
       csv.open(output_dir + "/bond_operator_throughput.csv");
-      csv << "dim,model,m_ratio,n_nodes,stencil_nodes,ranks,threads,"
+      csv << "dim,model,kernel,m_ratio,n_nodes,stencil_nodes,ranks,threads,"
              "seconds_per_apply,bond_visits,visits_per_second,"
              "visits_per_second_per_core,stream_bytes_per_second,"
              "fraction_of_bandwidth,reference_seconds_per_apply\n";
@@ -213,17 +218,22 @@ main(int argc, char **argv)
     std::string  model;
     unsigned int refinements;
     double       m_ratio;
+    bool         fracture = false;
   };
   std::vector<Case> cases =
     quick ? std::vector<Case>{{3, "linear peridynamic solid", 4, 3},
                               {3, "bond-based", 4, 3},
+                              {3, "bond-based", 4, 3, true},
                               {2, "linear peridynamic solid", 6, 3}} :
             std::vector<Case>{{3, "linear peridynamic solid", 5, 3},
                               {3, "linear peridynamic solid", 6, 3},
                               {3, "bond-based", 5, 3},
                               {3, "bond-based", 6, 3},
+                              {3, "bond-based", 6, 3, true},
+                              {3, "linear peridynamic solid", 6, 3, true},
                               {2, "linear peridynamic solid", 9, 3},
-                              {2, "bond-based", 9, 3}};
+                              {2, "bond-based", 9, 3},
+                              {2, "bond-based", 9, 3, true}};
   const unsigned int repetitions = quick ? 2 : 5;
 
   std::vector<double> bandwidth(max_threads + 1, 0.);
@@ -245,12 +255,14 @@ main(int argc, char **argv)
                                                  c.refinements,
                                                  c.m_ratio,
                                                  repetitions,
-                                                 reference) :
+                                                 reference,
+                                                 c.fracture) :
                                           measure<2>(c.model,
                                                  c.refinements,
                                                  c.m_ratio,
                                                  repetitions,
-                                                 reference);
+                                                 reference,
+                                                 c.fracture);
         const double rate  = r.visits / r.seconds_per_apply;
         const double cores = double(t) * n_ranks;
         const double fraction =
@@ -258,8 +270,9 @@ main(int argc, char **argv)
         if (root)
           {
             std::cout << c.dim << "D " << std::setw(25) << std::left << c.model
-                      << std::right << " nodes " << std::setw(8) << r.n_nodes
-                      << "  ranks " << n_ranks << "  threads " << t << ": "
+                      << (c.fracture ? " fracture" : "   linear") << std::right
+                      << " nodes " << std::setw(8) << r.n_nodes << "  ranks "
+                      << n_ranks << "  threads " << t << ": "
                       << std::setprecision(3) << std::scientific
                       << r.seconds_per_apply << " s/apply, "
                       << rate / cores / 1e6 << std::defaultfloat
@@ -271,10 +284,11 @@ main(int argc, char **argv)
                         << " s (" << r.reference_seconds / r.seconds_per_apply
                         << "x)";
             std::cout << std::endl;
-            csv << c.dim << ",\"" << c.model << "\"," << c.m_ratio << ','
-                << r.n_nodes << ',' << r.stencil << ',' << n_ranks << ',' << t
-                << ',' << std::setprecision(6) << r.seconds_per_apply << ','
-                << r.visits << ',' << rate << ',' << rate / cores << ','
+            csv << c.dim << ",\"" << c.model << "\","
+                << (c.fracture ? "fracture" : "linear") << ',' << c.m_ratio
+                << ',' << r.n_nodes << ',' << r.stencil << ',' << n_ranks << ','
+                << t << ',' << std::setprecision(6) << r.seconds_per_apply
+                << ',' << r.visits << ',' << rate << ',' << rate / cores << ','
                 << bandwidth[t] << ',' << fraction << ',' << r.reference_seconds
                 << '\n';
           }

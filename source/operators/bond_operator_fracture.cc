@@ -59,11 +59,11 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    BondOperator<dim>::record_exceeded(const unsigned int i,
-                                       const unsigned int j) const
+    BondOperator<dim>::record_exceeded(
+      const std::vector<ExceededBond> &found) const
     {
       std::lock_guard<std::mutex> lock(exceeded_mutex);
-      exceeded.emplace_back(i, j);
+      exceeded.insert(exceeded.end(), found.begin(), found.end());
     }
 
 
@@ -106,6 +106,9 @@ namespace PeriDEAL
         std::size_t(0),
         theta_chunks.size(),
         [&](const std::size_t begin, const std::size_t end) {
+          // Bonds over their critical stretch, found in this subrange
+          // (allocates only when a bond fails), handed over once.
+          std::vector<ExceededBond> found;
           alignas(64) double        theta[chunk_size];
           alignas(64) unsigned char failed[chunk_size];
           for (std::size_t c = begin; c < end; ++c)
@@ -155,13 +158,15 @@ namespace PeriDEAL
                   if (n_failed > 0)
                     for (unsigned int l = 0; l < len; ++l)
                       if (failed[l])
-                        record_exceeded(node_of_slot(s0 + l),
-                                        node_of_slot(s0 + l + o));
+                        found.emplace_back(node_of_slot(s0 + l),
+                                           node_of_slot(s0 + l + o));
                 }
               const double s = stencil.node_factor;
               for (unsigned int l = 0; l < len; ++l)
                 t_slot[s0 + l] = s * theta[l];
             }
+          if (!found.empty())
+            record_exceeded(found);
         },
         chunk_grain);
 
@@ -169,6 +174,9 @@ namespace PeriDEAL
         std::size_t(0),
         theta_list_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
+          // Bonds over their critical stretch, found in this subrange
+          // (allocates only when a bond fails), handed over once.
+          std::vector<ExceededBond> found;
           for (std::size_t q = begin; q < end; ++q)
             {
               const unsigned int i     = theta_list_nodes[q];
@@ -197,7 +205,7 @@ namespace PeriDEAL
                 if (e * (1. / r) < std::min(s0_slot[si], s0_slot[sj]))
                   theta += g * e;
                 else
-                  record_exceeded(i, node_of_slot(sj));
+                  found.emplace_back(i, node_of_slot(sj));
               };
               if (use_lattice)
                 {
@@ -230,6 +238,8 @@ namespace PeriDEAL
                   }
               t_slot[si] = s_slot[si] * theta;
             }
+          if (!found.empty())
+            record_exceeded(found);
         },
         node_grain);
     }
@@ -246,6 +256,9 @@ namespace PeriDEAL
         std::size_t(0),
         force_chunks.size(),
         [&](const std::size_t begin, const std::size_t end) {
+          // Bonds over their critical stretch, found in this subrange
+          // (allocates only when a bond fails), handed over once.
+          std::vector<ExceededBond> found;
           alignas(64) double        force[dim][chunk_size];
           alignas(64) unsigned char failed[chunk_size];
           for (std::size_t c = begin; c < end; ++c)
@@ -312,13 +325,15 @@ namespace PeriDEAL
                   if (n_failed > 0)
                     for (unsigned int l = 0; l < len; ++l)
                       if (failed[l])
-                        record_exceeded(node_of_slot(s0 + l),
-                                        node_of_slot(s0 + l + o));
+                        found.emplace_back(node_of_slot(s0 + l),
+                                           node_of_slot(s0 + l + o));
                 }
               for (unsigned int d = 0; d < dim; ++d)
                 for (unsigned int l = 0; l < len; ++l)
                   f_slot[d][s0 + l] = force[d][l];
             }
+          if (!found.empty())
+            record_exceeded(found);
         },
         chunk_grain);
 
@@ -326,6 +341,9 @@ namespace PeriDEAL
         std::size_t(0),
         force_list_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
+          // Bonds over their critical stretch, found in this subrange
+          // (allocates only when a bond fails), handed over once.
+          std::vector<ExceededBond> found;
           for (std::size_t q = begin; q < end; ++q)
             {
               const unsigned int i      = force_list_nodes[q];
@@ -358,7 +376,7 @@ namespace PeriDEAL
                     }
                 if (!(e * (1. / r) < std::min(s0_slot[si], s0_slot[sj])))
                   {
-                    record_exceeded(i, node_of_slot(sj));
+                    found.emplace_back(i, node_of_slot(sj));
                     return;
                   }
                 const double t = (sb ? a * (t_slot[si] + t_slot[sj]) : 0.) +
@@ -400,6 +418,8 @@ namespace PeriDEAL
               for (unsigned int d = 0; d < dim; ++d)
                 f_slot[d][si] = f[d];
             }
+          if (!found.empty())
+            record_exceeded(found);
         },
         node_grain);
     }
@@ -494,14 +514,14 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)                                                    \
-  template void BondOperator<dim>::set_kinematics(                                   \
-    const bool,                                                                      \
-    const std::vector<double> &);                                                    \
-  template void        BondOperator<dim>::record_exceeded(const unsigned int,        \
-                                                   const unsigned int) const; \
-  template std::size_t BondOperator<dim>::commit_broken_bonds(                       \
-    Discretization::BondState<dim> &);                                               \
+#define PERIDEAL_INSTANTIATE(dim)                              \
+  template void BondOperator<dim>::set_kinematics(             \
+    const bool,                                                \
+    const std::vector<double> &);                              \
+  template void BondOperator<dim>::record_exceeded(            \
+    const std::vector<ExceededBond> &) const;                  \
+  template std::size_t BondOperator<dim>::commit_broken_bonds( \
+    Discretization::BondState<dim> &);                         \
   template double BondOperator<dim>::elastic_energy(const VectorType &) const;
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)

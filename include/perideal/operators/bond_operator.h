@@ -366,10 +366,10 @@ namespace PeriDEAL
       void
       nonlinear_force_pass() const;
 
-      /// Record the bond from node @p i to node @p j as over its critical
-      /// stretch (thread-safe; called only when a bond fails).
+      /// Record bonds (node, neighbour) found over their critical stretch
+      /// (thread-safe; one lock per subrange in which bonds failed).
       void
-      record_exceeded(const unsigned int i, const unsigned int j) const;
+      record_exceeded(const std::vector<ExceededBond> &found) const;
     };
 
 
