@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <type_traits>
 
 // The passes of BondOperator with finite kinematics and bond failure
 // (explicit dynamics and fracture), compiled with the bond-loop flags.
@@ -177,6 +178,26 @@ namespace PeriDEAL
           // Bonds over their critical stretch, found in this subrange
           // (allocates only when a bond fails), handed over once.
           std::vector<ExceededBond> found;
+          // Raw views of the stencil and the slot arrays for the gathers.
+          const std::uint16_t  *index  = list_stencil_index.data();
+          const std::ptrdiff_t *offset = stencil.slot_offset.data();
+          const double *rs = stencil.r.data(), *inv_rs = stencil.inv_r.data(),
+                       *gs = stencil.g.data(), *as = stencil.a.data(),
+                       *bs = stencil.b.data(), *ts = t_slot.data(),
+                       *ss = s_slot.data(), *s0s = s0_slot.data();
+          const double *xs[dim], *ns[dim], *us[dim];
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              xs[d] = stencil.xi[d].data();
+              ns[d] = stencil.n[d].data();
+              us[d] = u_slot[d].data();
+            }
+          std::vector<unsigned char> failed(use_lattice ? stencil.r.size() : 0);
+          (void)gs;
+          (void)as;
+          (void)bs;
+          (void)ts;
+          (void)ss;
           for (std::size_t q = begin; q < end; ++q)
             {
               const unsigned int i     = theta_list_nodes[q];
@@ -209,22 +230,43 @@ namespace PeriDEAL
               };
               if (use_lattice)
                 {
-                  for (std::size_t b = list_first[i]; b < list_first[i + 1];
-                       ++b)
+                  const std::size_t first = list_first[i],
+                                    last  = list_first[i + 1];
+                  const double c_i        = s0_slot[si];
+                  double       ui[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    ui[d] = u_slot[d][si];
+                  int n_failed = 0;
+#pragma omp simd reduction(+ : theta, n_failed)
+                  for (std::size_t b = first; b < last; ++b)
                     {
-                      const unsigned int k = list_stencil_index[b];
-                      double             xi[dim], n[dim];
-                      for (unsigned int d = 0; d < dim; ++d)
+                      const unsigned int k  = index[b];
+                      const std::size_t  sj = si + offset[k];
+                      double             e  = 0;
+                      if constexpr (finite_kinematics)
                         {
-                          xi[d] = stencil.xi[d][k];
-                          n[d]  = stencil.n[d][k];
+                          double length2 = 0;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            {
+                              const double y = xs[d][k] + (us[d][sj] - ui[d]);
+                              length2 += y * y;
+                            }
+                          e = std::sqrt(length2) - rs[k];
                         }
-                      visit(si + stencil.slot_offset[k],
-                            xi,
-                            n,
-                            stencil.r[k],
-                            stencil.g[k]);
+                      else
+                        for (unsigned int d = 0; d < dim; ++d)
+                          e += ns[d][k] * (us[d][sj] - ui[d]);
+                      const bool intact =
+                        e * inv_rs[k] < std::min(c_i, s0s[sj]);
+                      theta += intact ? gs[k] * e : 0.;
+                      failed[b - first] = !intact;
+                      n_failed += !intact;
                     }
+                  if (n_failed > 0)
+                    for (std::size_t b = first; b < last; ++b)
+                      if (failed[b - first])
+                        found.emplace_back(i,
+                                           node_of_slot(si + offset[index[b]]));
                   theta *= list_theta_scale[i];
                 }
               else
@@ -291,37 +333,50 @@ namespace PeriDEAL
                     }
                   const double *tj = ti + o, *sj = si + o, *cj = ci + o;
                   int           n_failed = 0;
+                  // Bond-based models (s = 1, no dilatation) skip the loads
+                  // of the state-based terms.
+                  const auto lanes = [&](auto state_based_tag) {
+                    constexpr bool with_state =
+                      decltype(state_based_tag)::value;
 #pragma omp simd reduction(+ : n_failed)
-                  for (unsigned int l = 0; l < len; ++l)
-                    {
-                      double y[dim], e = 0, scale = 1;
-                      if constexpr (finite_kinematics)
-                        {
-                          double length2 = 0;
+                    for (unsigned int l = 0; l < len; ++l)
+                      {
+                        double y[dim], e = 0, scale = 1;
+                        if constexpr (finite_kinematics)
+                          {
+                            double length2 = 0;
+                            for (unsigned int d = 0; d < dim; ++d)
+                              {
+                                y[d] = xi[d] + (uj[d][l] - ui[d][l]);
+                                length2 += y[d] * y[d];
+                              }
+                            const double length = std::sqrt(length2);
+                            e                   = length - r;
+                            scale               = length > 0 ? 1. / length : 0.;
+                          }
+                        else
                           for (unsigned int d = 0; d < dim; ++d)
                             {
-                              y[d] = xi[d] + (uj[d][l] - ui[d][l]);
-                              length2 += y[d] * y[d];
+                              y[d] = nk[d];
+                              e += nk[d] * (uj[d][l] - ui[d][l]);
                             }
-                          const double length = std::sqrt(length2);
-                          e                   = length - r;
-                          scale               = length > 0 ? 1. / length : 0.;
-                        }
-                      else
+                        const bool intact = e * inv_r < std::min(ci[l], cj[l]);
+                        double     t;
+                        if constexpr (with_state)
+                          t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                        else
+                          t = 2 * b * e;
+                        const double ty = intact ? t * scale : 0.;
                         for (unsigned int d = 0; d < dim; ++d)
-                          {
-                            y[d] = nk[d];
-                            e += nk[d] * (uj[d][l] - ui[d][l]);
-                          }
-                      const bool   intact = e * inv_r < std::min(ci[l], cj[l]);
-                      const double t =
-                        a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
-                      const double ty = intact ? t * scale : 0.;
-                      for (unsigned int d = 0; d < dim; ++d)
-                        force[d][l] += ty * y[d];
-                      failed[l] = !intact;
-                      n_failed += !intact;
-                    }
+                          force[d][l] += ty * y[d];
+                        failed[l] = !intact;
+                        n_failed += !intact;
+                      }
+                  };
+                  if (sb)
+                    lanes(std::true_type());
+                  else
+                    lanes(std::false_type());
                   if (n_failed > 0)
                     for (unsigned int l = 0; l < len; ++l)
                       if (failed[l])
@@ -344,6 +399,26 @@ namespace PeriDEAL
           // Bonds over their critical stretch, found in this subrange
           // (allocates only when a bond fails), handed over once.
           std::vector<ExceededBond> found;
+          // Raw views of the stencil and the slot arrays for the gathers.
+          const std::uint16_t  *index  = list_stencil_index.data();
+          const std::ptrdiff_t *offset = stencil.slot_offset.data();
+          const double *rs = stencil.r.data(), *inv_rs = stencil.inv_r.data(),
+                       *gs = stencil.g.data(), *as = stencil.a.data(),
+                       *bs = stencil.b.data(), *ts = t_slot.data(),
+                       *ss = s_slot.data(), *s0s = s0_slot.data();
+          const double *xs[dim], *ns[dim], *us[dim];
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              xs[d] = stencil.xi[d].data();
+              ns[d] = stencil.n[d].data();
+              us[d] = u_slot[d].data();
+            }
+          std::vector<unsigned char> failed(use_lattice ? stencil.r.size() : 0);
+          (void)gs;
+          (void)as;
+          (void)bs;
+          (void)ts;
+          (void)ss;
           for (std::size_t q = begin; q < end; ++q)
             {
               const unsigned int i      = force_list_nodes[q];
@@ -385,22 +460,64 @@ namespace PeriDEAL
                   f[d] += t * scale * y[d];
               };
               if (use_lattice)
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
-                  {
-                    const unsigned int k = list_stencil_index[b];
-                    double             xi[dim], n[dim];
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        xi[d] = stencil.xi[d][k];
-                        n[d]  = stencil.n[d][k];
-                      }
-                    visit(si + stencil.slot_offset[k],
-                          xi,
-                          n,
-                          stencil.r[k],
-                          stencil.a[k],
-                          stencil.b[k]);
-                  }
+                {
+                  // Vectorised over the node's bonds (gathers), with the
+                  // failure decisions kept for the record.
+                  const std::size_t first = list_first[i],
+                                    last  = list_first[i + 1];
+                  const double ti = t_slot[si], s_i = s_slot[si],
+                               c_i = s0_slot[si];
+                  double ui[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    ui[d] = u_slot[d][si];
+                  double f0 = 0, f1 = 0, f2 = 0;
+                  int    n_failed = 0;
+#pragma omp simd reduction(+ : f0, f1, f2, n_failed)
+                  for (std::size_t b = first; b < last; ++b)
+                    {
+                      const unsigned int k  = index[b];
+                      const std::size_t  sj = si + offset[k];
+                      double             y[dim], e = 0, scale = 1;
+                      if constexpr (finite_kinematics)
+                        {
+                          double length2 = 0;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            {
+                              y[d] = xs[d][k] + (us[d][sj] - ui[d]);
+                              length2 += y[d] * y[d];
+                            }
+                          const double length = std::sqrt(length2);
+                          e                   = length - rs[k];
+                          scale               = length > 0 ? 1. / length : 0.;
+                        }
+                      else
+                        for (unsigned int d = 0; d < dim; ++d)
+                          {
+                            y[d] = ns[d][k];
+                            e += ns[d][k] * (us[d][sj] - ui[d]);
+                          }
+                      const bool intact =
+                        e * inv_rs[k] < std::min(c_i, s0s[sj]);
+                      const double t = (sb ? as[k] * (ti + ts[sj]) : 0.) +
+                                       bs[k] * (s_i + ss[sj]) * e;
+                      const double ty = intact ? t * scale : 0.;
+                      f0 += ty * y[0];
+                      f1 += ty * y[1];
+                      if constexpr (dim == 3)
+                        f2 += ty * y[dim - 1];
+                      failed[b - first] = !intact;
+                      n_failed += !intact;
+                    }
+                  f[0] = f0;
+                  f[1] = f1;
+                  if constexpr (dim == 3)
+                    f[dim - 1] = f2;
+                  if (n_failed > 0)
+                    for (std::size_t b = first; b < last; ++b)
+                      if (failed[b - first])
+                        found.emplace_back(i,
+                                           node_of_slot(si + offset[index[b]]));
+                }
               else
                 for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
                   {
