@@ -187,6 +187,20 @@ namespace PeriDEAL
                                  "the horizon plus two cell diameters."));
         }
 
+      // Stencil indices of the bonds of stored lists on the lattice, in
+      // bond order (looked up once).
+      bond_stencil_first.assign(use_lattice ? n + 1 : 0, 0);
+      bond_stencil_index.clear();
+      if (use_lattice)
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            if (lists->has_list(i) && !lists->has_full_stencil(i))
+              for (const auto &bond : lists->bonds(i))
+                bond_stencil_index.push_back(
+                  lists->stencil_index(i, bond.neighbor));
+            bond_stencil_first[i + 1] = bond_stencil_index.size();
+          }
+
       build_work_lists();
     }
 
@@ -295,11 +309,18 @@ namespace PeriDEAL
                   // The stencil's constants hold for every node of the
                   // lattice; only the dilatation factor d / m_i differs.
                   list_theta_scale[i] = m[i] > 0 ? m0 / m[i] : 0.;
-                  for_each_intact_bond(i,
-                                       [&](const unsigned int j, const double) {
-                                         list_stencil_index.push_back(
-                                           lists->stencil_index(i, j));
-                                       });
+                  // The stencil index of each intact bond: for a full
+                  // stencil the bond index itself; for a stored list the
+                  // index found once (bond_stencil_index) and kept, so
+                  // that a re-sort after bonds broke costs a bit test per
+                  // bond, not a lattice look-up.
+                  const unsigned int n_all = lists->n_bonds(i);
+                  const bool         full  = lists->has_full_stencil(i);
+                  for (unsigned int k = 0; k < n_all; ++k)
+                    if (bond_state == nullptr || !bond_state->is_broken(i, k))
+                      list_stencil_index.push_back(
+                        full ? k :
+                               bond_stencil_index[bond_stencil_first[i] + k]);
                   const std::size_t n_bonds =
                     list_stencil_index.size() - list_first[i];
                   bond_visits += (needs_theta[i] ? n_bonds : 0) +
@@ -783,7 +804,9 @@ namespace PeriDEAL
           sizeof(unsigned int) +
         list_first.capacity() * sizeof(std::size_t) +
         list_bonds.capacity() * sizeof(ListBond) +
-        list_stencil_index.capacity() * sizeof(std::uint16_t) +
+        (list_stencil_index.capacity() + bond_stencil_index.capacity()) *
+          sizeof(std::uint16_t) +
+        bond_stencil_first.capacity() * sizeof(std::size_t) +
         list_theta_scale.capacity() * sizeof(double) +
         (2 * dim + 2) * n_slots * sizeof(double) +
         s0_slot.size() * sizeof(double);

@@ -299,6 +299,10 @@ namespace PeriDEAL
       // stencil index of each (2 bytes a bond), the constants shared.
       std::vector<ListBond>      list_bonds;
       std::vector<std::uint16_t> list_stencil_index;
+      // Per node with a stored list on the lattice: the stencil index of
+      // every bond (broken or not), in bond order.
+      std::vector<std::uint16_t> bond_stencil_index;
+      std::vector<std::size_t>   bond_stencil_first;
       std::vector<double>        list_theta_scale; // m_0 / m_i per node
       std::vector<unsigned int>  owned_slots;
       unsigned int               n_owned_stencil = 0;
