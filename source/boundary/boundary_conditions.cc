@@ -2,13 +2,12 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <deal.II/boost_adaptors/bounding_box.h>
-
-#include <deal.II/numerics/rtree.h>
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_conditions.h>
+#include <perideal/boundary/boundary_layers.h>
+#include <perideal/discretization/crack_geometry.h>
 
 #include <algorithm>
 #include <sstream>
@@ -65,21 +64,6 @@ namespace PeriDEAL
         return function;
       }
 
-      template <int dim>
-      double
-      distance_squared(const BoundingBox<dim> &box, const Point<dim> &p)
-      {
-        double d2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double below = box.lower_bound(d) - p[d];
-            const double above = p[d] - box.upper_bound(d);
-            const double gap   = std::max(0., std::max(below, above));
-            d2 += gap * gap;
-          }
-        return d2;
-      }
-
       // Whether face f of cell lies on a boundary with one of the (sorted)
       // ids.
       template <class CellIterator>
@@ -94,17 +78,6 @@ namespace PeriDEAL
                                   cell->face(f)->boundary_id());
       }
 
-
-      template <int dim>
-      BoundingBox<dim>
-      face_box(const typename DoFHandler<dim>::active_cell_iterator &cell,
-               const unsigned int                                    f)
-      {
-        std::vector<Point<dim>> vertices;
-        for (const unsigned int v : cell->face(f)->vertex_indices())
-          vertices.push_back(cell->face(f)->vertex(v));
-        return BoundingBox<dim>(vertices);
-      }
 
       // The value of a dim-component function as a tensor.
       template <int dim>
@@ -150,6 +123,15 @@ namespace PeriDEAL
         "this to a Dirichlet face are constrained. With a state-based model "
         "a thickness of 2 gives every free node's neighbours a full "
         "neighbourhood.");
+      prm.declare_entry(
+        "Dirichlet boxes",
+        "",
+        Patterns::Anything(),
+        "Boxes 'xmin, ymin[, zmin], xmax, ymax[, zmax]' (several separated "
+        "by ';') whose nodes have the 'Dirichlet components' prescribed like "
+        "those of the Dirichlet layers: a prescribed region that is not a "
+        "layer along a whole face, such as the impact zone of a "
+        "Kalthoff-Winkler plate. Empty: none.");
       prm.enter_subsection("Dirichlet displacement");
       Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
       prm.leave_subsection();
@@ -201,6 +183,10 @@ namespace PeriDEAL
       for (const auto &c : components)
         dirichlet_components[c[0] - 'x'] = true;
 
+      dirichlet_boxes_text = prm.get("Dirichlet boxes");
+      dirichlet_boxes =
+        Discretization::parse_boxes<dim>(dirichlet_boxes_text,
+                                         "Boundary conditions/Dirichlet boxes");
       layer_thickness      = prm.get_double("Dirichlet layer thickness");
       layer_thickness_text = prm.get("Dirichlet layer thickness");
       AssertThrow(
@@ -333,67 +319,31 @@ namespace PeriDEAL
 
       check_boundary_ids(dof_handler.get_triangulation());
 
-      if (dirichlet_ids.empty())
+      if (dirichlet_ids.empty() && dirichlet_boxes.empty())
         {
           constraints.close();
           return;
         }
 
-      // The Dirichlet faces of all processes (a layer can be several cells
-      // thick and cross partition boundaries), one R-tree per boundary id,
-      // so that a listed id whose layer holds no node can be named.
-      std::vector<std::vector<BoundingBox<dim>>> local_faces(
-        dirichlet_ids.size());
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int f : cell->face_indices())
-            if (on_boundary(cell, f, dirichlet_ids))
-              {
-                const auto id = cell->face(f)->boundary_id();
-                const auto k =
-                  std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) -
-                  dirichlet_ids.begin();
-                local_faces[k].push_back(face_box<dim>(cell, f));
-              }
-      std::vector<decltype(pack_rtree(std::vector<BoundingBox<dim>>()))> trees;
-      for (unsigned int k = 0; k < dirichlet_ids.size(); ++k)
-        {
-          std::vector<BoundingBox<dim>> faces;
-          for (const auto &part :
-               Utilities::MPI::all_gather(comm, local_faces[k]))
-            faces.insert(faces.end(), part.begin(), part.end());
-          trees.push_back(pack_rtree(faces));
-        }
-
-      const double thickness = layer_thickness * horizon;
-      // Nodes at exactly the layer thickness (horizons at half-integer
-      // m-ratios) are free: a relative margin keeps that decision
-      // independent of round-off in the node coordinates.
-      const double                  limit = thickness * (1 - 1e-10);
-      Vector<double>                g(dim);
-      std::vector<BoundingBox<dim>> candidates;
-      std::vector<unsigned int>     nodes_of_id(dirichlet_ids.size(), 0);
-      std::string                   non_finite;
+      const double              thickness = layer_thickness * horizon;
+      std::vector<unsigned int> nodes_of_id;
+      const auto                layer =
+        BoundaryLayers<dim>(dof_handler.get_triangulation(), dirichlet_ids)
+          .layer_of_nodes(nodes, thickness, &nodes_of_id, comm);
+      std::vector<unsigned int> nodes_of_box(dirichlet_boxes.size(), 0);
+      Vector<double>            g(dim);
+      std::string               non_finite;
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
-          const auto      &node = nodes[i];
-          BoundingBox<dim> search(std::make_pair(node.location, node.location));
-          search.extend(thickness);
-          bool inside = false;
-          for (unsigned int k = 0; k < trees.size(); ++k)
-            {
-              candidates.clear();
-              trees[k].query(boost::geometry::index::intersects(search),
-                             std::back_inserter(candidates));
-              for (const auto &face : candidates)
-                if (distance_squared(face, node.location) < limit * limit)
-                  {
-                    inside = true;
-                    if (i < nodes.n_owned())
-                      ++nodes_of_id[k];
-                    break;
-                  }
-            }
+          const auto &node   = nodes[i];
+          bool        inside = layer[i] != numbers::invalid_unsigned_int;
+          for (unsigned int b = 0; b < dirichlet_boxes.size(); ++b)
+            if (dirichlet_boxes[b].point_inside(node.location))
+              {
+                inside = true;
+                if (i < nodes.n_owned())
+                  ++nodes_of_box[b];
+              }
           if (!inside)
             continue;
           dirichlet_displacement->vector_value(node.location, g);
@@ -409,7 +359,7 @@ namespace PeriDEAL
                           << c << " is " << g[c] << " at the node ("
                           << node.location
                           << "); give an expression that is finite in every "
-                             "Dirichlet layer.";
+                             "Dirichlet layer and box.";
                     non_finite = where.str();
                   }
                 constraints.add_line(node.dofs[c]);
@@ -419,7 +369,7 @@ namespace PeriDEAL
       throw_on_any_rank(non_finite, comm);
       for (unsigned int k = 0; k < dirichlet_ids.size(); ++k)
         AssertThrow(
-          Utilities::MPI::sum(nodes_of_id[k], comm) > 0,
+          nodes_of_id[k] > 0,
           ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
                           layer_thickness_text,
                           "the Dirichlet layer of boundary id " +
@@ -428,6 +378,17 @@ namespace PeriDEAL
                             " thick) holds no node centre, so it prescribes "
                             "nothing; use a layer of at least half a cell (a "
                             "thickness above h / (2 horizon))"));
+      if (!dirichlet_boxes.empty())
+        Utilities::MPI::sum(nodes_of_box, comm, nodes_of_box);
+      for (unsigned int b = 0; b < dirichlet_boxes.size(); ++b)
+        AssertThrow(nodes_of_box[b] > 0,
+                    ExcInvalidInput("Boundary conditions/Dirichlet boxes",
+                                    dirichlet_boxes_text,
+                                    "box " + std::to_string(b + 1) +
+                                      " holds no node centre, so it "
+                                      "prescribes nothing; enlarge it to "
+                                      "hold the nodes (cell centres) to "
+                                      "prescribe"));
       constraints.close();
 
       const unsigned int n_free =
@@ -438,10 +399,10 @@ namespace PeriDEAL
         n_free > 0,
         ExcInvalidInput("Boundary conditions/Dirichlet layer thickness",
                         layer_thickness_text,
-                        "every node lies in the Dirichlet layer (" +
+                        "every node lies in a Dirichlet layer (" +
                           format_number(thickness) +
-                          " thick); use a thinner layer, a smaller horizon or "
-                          "a larger body"));
+                          " thick) or box; use a thinner layer, smaller "
+                          "boxes, a smaller horizon or a larger body"));
     }
 
 

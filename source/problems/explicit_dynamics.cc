@@ -3,6 +3,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
 
 #include <cmath>
@@ -97,6 +98,19 @@ namespace PeriDEAL
         Patterns::Anything(),
         "Bonds with an end node in one of these boxes never break. 'xmin, "
         "ymin[, zmin], xmax, ymax[, zmax]', several separated by ';'.");
+      prm.declare_entry(
+        "No-fail boundary ids",
+        "",
+        Patterns::List(Patterns::Integer(0, 254)),
+        "Bonds with an end node closer than 'No-fail layer thickness' to a "
+        "boundary face with one of these ids never break: keeps loaded or "
+        "gripped edges from shattering.");
+      prm.declare_entry("No-fail layer thickness",
+                        "1",
+                        Patterns::Double(0),
+                        "Thickness of the no-fail layers along 'No-fail "
+                        "boundary ids', in horizons.");
+      IO::CrackTipTracker<dim>::declare_parameters(prm);
       prm.declare_entry("Probe points",
                         "",
                         Patterns::Anything(),
@@ -219,6 +233,22 @@ namespace PeriDEAL
       no_fail_boxes =
         Discretization::parse_boxes<dim>(no_fail_text,
                                          "explicit dynamics/No-fail boxes");
+      no_fail_ids_text = prm.get("No-fail boundary ids");
+      no_fail_ids.clear();
+      for (const int id : Utilities::string_to_int(
+             Utilities::split_string_list(no_fail_ids_text)))
+        no_fail_ids.push_back(static_cast<types::boundary_id>(id));
+      std::sort(no_fail_ids.begin(), no_fail_ids.end());
+      no_fail_ids.erase(std::unique(no_fail_ids.begin(), no_fail_ids.end()),
+                        no_fail_ids.end());
+      no_fail_thickness_text = prm.get("No-fail layer thickness");
+      no_fail_thickness      = prm.get_double("No-fail layer thickness");
+      AssertThrow(no_fail_ids.empty() || no_fail_thickness > 0,
+                  ExcInvalidInput("explicit dynamics/No-fail layer thickness",
+                                  no_fail_thickness_text,
+                                  "give a thickness > 0 (in horizons), for "
+                                  "instance 1"));
+      crack_tip.parse_parameters(prm, "explicit dynamics");
       probe_points =
         Discretization::parse_points<dim>(prm.get("Probe points"),
                                           "explicit dynamics/Probe points");
@@ -330,13 +360,62 @@ namespace PeriDEAL
       bond_state.reinit(nodes, lists);
       bond_operator.reinit(nodes, lists, model, horizon, &bond_state);
 
-      // Failure: the model's critical stretch, none in the no-fail boxes.
-      const double        s0 = model.critical_stretch(horizon);
-      std::vector<double> critical(nodes.size(), s0);
+      // Failure: the model's critical stretch, none in the no-fail boxes
+      // and layers (each of which must hold a node).
+      const double              s0 = model.critical_stretch(horizon);
+      std::vector<double>       critical(nodes.size(), s0);
+      std::vector<unsigned int> nodes_in_box(no_fail_boxes.size(), 0);
       for (unsigned int i = 0; i < nodes.size(); ++i)
-        for (const auto &box : no_fail_boxes)
-          if (box.point_inside(nodes[i].location))
-            critical[i] = std::numeric_limits<double>::infinity();
+        for (unsigned int b = 0; b < no_fail_boxes.size(); ++b)
+          if (no_fail_boxes[b].point_inside(nodes[i].location))
+            {
+              critical[i] = std::numeric_limits<double>::infinity();
+              if (i < nodes.n_owned())
+                ++nodes_in_box[b];
+            }
+      if (!no_fail_boxes.empty())
+        Utilities::MPI::sum(nodes_in_box, comm, nodes_in_box);
+      for (unsigned int b = 0; b < no_fail_boxes.size(); ++b)
+        AssertThrow(nodes_in_box[b] > 0,
+                    ExcInvalidInput("explicit dynamics/No-fail boxes",
+                                    no_fail_text,
+                                    "box " + std::to_string(b + 1) +
+                                      " holds no node centre, so it keeps "
+                                      "no bond from failing; enlarge or "
+                                      "move it onto the body"));
+      if (!no_fail_ids.empty())
+        {
+          const auto mesh_ids =
+            simulator.get_dof_handler().get_triangulation().get_boundary_ids();
+          for (const auto id : no_fail_ids)
+            AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
+                          mesh_ids.end(),
+                        ExcInvalidInput("explicit dynamics/No-fail boundary "
+                                        "ids",
+                                        no_fail_ids_text,
+                                        "boundary id " + std::to_string(id) +
+                                          " does not occur in the mesh"));
+          std::vector<unsigned int> n_in_layer;
+          const auto                layer = Boundary::BoundaryLayers<dim>(
+                               simulator.get_dof_handler().get_triangulation(),
+                               no_fail_ids)
+                               .layer_of_nodes(nodes,
+                                               no_fail_thickness * horizon,
+                                               &n_in_layer,
+                                               comm);
+          for (unsigned int i = 0; i < nodes.size(); ++i)
+            if (layer[i] != numbers::invalid_unsigned_int)
+              critical[i] = std::numeric_limits<double>::infinity();
+          for (unsigned int k = 0; k < no_fail_ids.size(); ++k)
+            AssertThrow(
+              n_in_layer[k] > 0,
+              ExcInvalidInput("explicit dynamics/No-fail layer thickness",
+                              no_fail_thickness_text,
+                              "the no-fail layer of boundary id " +
+                                std::to_string(no_fail_ids[k]) +
+                                " holds no node centre; use a layer of at "
+                                "least half a cell"));
+        }
       bond_operator.set_kinematics(finite_kinematics, critical);
 
       double h = 0;
@@ -670,6 +749,17 @@ namespace PeriDEAL
                                     probes.begin(),
                                     probes.end());
         }
+      if (crack_tip.enabled())
+        {
+          const auto tip = crack_tip.evaluate(
+            simulator.get_nodes(),
+            [this](const unsigned int i) { return bond_state.damage(i); },
+            simulator.get_horizon(),
+            comm);
+          energy_rows.back().insert(energy_rows.back().end(),
+                                    tip.begin(),
+                                    tip.end());
+        }
     }
 
 
@@ -687,11 +777,14 @@ namespace PeriDEAL
         << " s] step " << step_number << "/" << n_steps
         << ", t = " << std::scientific << std::setprecision(4) << time
         << " s, kinetic " << row[2] << ", elastic " << row[3]
-        << ", external work " << row[4] << ", broken bonds " << broken_bonds
-        << ", " << std::fixed << std::setprecision(1) << rate << " steps/s, "
-        << std::setprecision(0)
-        << (n_steps - step_number) / std::max(rate, 1e-9) << " s left"
-        << std::defaultfloat << std::endl;
+        << ", external work " << row[4] << ", broken bonds " << broken_bonds;
+      if (crack_tip.enabled())
+        simulator.get_pcout()
+          << ", crack tip at " << row[row.size() - 2] << " m from the origin";
+      simulator.get_pcout() << ", " << std::fixed << std::setprecision(1)
+                            << rate << " steps/s, " << std::setprecision(0)
+                            << (n_steps - step_number) / std::max(rate, 1e-9)
+                            << " s left" << std::defaultfloat << std::endl;
     }
 
 
@@ -755,6 +848,9 @@ namespace PeriDEAL
                   for (unsigned int c = 0; c < dim; ++c)
                     out << ",probe" << k << "_u"
                         << "xyz"[c];
+                if (crack_tip.enabled())
+                  for (const auto &name : crack_tip.column_names())
+                    out << ',' << name;
                 out << '\n' << std::setprecision(12);
                 for (const auto &row : energy_rows)
                   {

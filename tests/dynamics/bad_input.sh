@@ -70,7 +70,20 @@ for np in 1 2; do
     "Invalid value '0.001' for the parameter 'explicit dynamics/Time step': the step exceeds the stability bound" $np
   expect_error 's/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 5, 5, 6, 6/' \
     "'explicit dynamics/Pre-cracks': no bond crosses the pre-cracks" $np
+  # Regions that hold no node: they would silently do nothing.
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set No-fail boxes = 2, 2, 3, 3/' \
+    "Invalid value '2, 2, 3, 3' for the parameter 'explicit dynamics/No-fail boxes': box 1 holds no node centre" $np
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set No-fail boundary ids = 2\n  set No-fail layer thickness = 0.01/' \
+    "Invalid value '0.01' for the parameter 'explicit dynamics/No-fail layer thickness': the no-fail layer of boundary id 2 holds no node centre" $np
+  expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary conditions\n  set Dirichlet boxes = 0, 0, 0.05, 0.5; 0.3, 0.3, 0.31, 0.31\nend/' \
+    "Invalid value '0, 0, 0.05, 0.5; 0.3, 0.3, 0.31, 0.31' for the parameter 'Boundary conditions/Dirichlet boxes': box 2 holds no node centre" $np
 done
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set No-fail boundary ids = 7/' \
+  "Invalid value '7' for the parameter 'explicit dynamics/No-fail boundary ids': boundary id 7 does not occur in the mesh"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Crack tip origin = 0.5, 0.25; 0, 0/' \
+  "Invalid value '0.5, 0.25; 0, 0' for the parameter 'explicit dynamics/Crack tip origin': give one point"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Crack tip origin = 0.5/' \
+  "'explicit dynamics/Crack tip origin': a point is 'x, y'"
 expect_error 's/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0, 0.25, 0.5/' \
   "Invalid value '0, 0.25, 0.5' for the parameter 'explicit dynamics/Pre-cracks': a 2D pre-crack is a segment"
 expect_error 's/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0, 0.25, half, 0.25/' \

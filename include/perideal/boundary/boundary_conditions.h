@@ -1,6 +1,7 @@
 #ifndef perideal_boundary_boundary_conditions_h
 #define perideal_boundary_boundary_conditions_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/types.h>
@@ -38,7 +39,8 @@ namespace PeriDEAL
      *   "Dirichlet displacement", evaluated at the node. The constraints
      *   are inhomogeneous identity constraints u_k = g(x_i) in an
      *   AffineConstraints object over the locally relevant DoFs, so that a
-     *   node's status is the same on every process that sees it.
+     *   node's status is the same on every process that sees it. Nodes in
+     *   one of the "Dirichlet boxes" are prescribed in the same way.
      * - **Body force** b(x), applied as the nodal force V_i b(x_i).
      * - **Traction** t(x) on the boundary faces with one of the "Traction
      *   boundary ids": the force t(x_f) |f| of face f goes to the node of
@@ -147,6 +149,8 @@ namespace PeriDEAL
     private:
       std::vector<types::boundary_id> dirichlet_ids;
       std::vector<bool>               dirichlet_components;
+      std::vector<BoundingBox<dim>>   dirichlet_boxes;
+      std::string                     dirichlet_boxes_text;
       double                          layer_thickness      = 1;
       std::string                     layer_thickness_text = "1";
       std::vector<types::boundary_id> traction_ids;

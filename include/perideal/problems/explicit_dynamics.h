@@ -10,6 +10,7 @@
 
 #include <perideal/discretization/bond_state.h>
 #include <perideal/discretization/crack_geometry.h>
+#include <perideal/io/crack_tip_tracker.h>
 #include <perideal/operators/bond_operator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
@@ -157,7 +158,11 @@ namespace PeriDEAL
       std::unique_ptr<FunctionParser<1>>              load_history;
       Discretization::PreCracks<dim>                  pre_cracks;
       std::vector<BoundingBox<dim>>                   no_fail_boxes;
-      std::vector<Point<dim>>                         probe_points;
+      std::vector<types::boundary_id>                 no_fail_ids;
+      std::string              no_fail_ids_text, no_fail_thickness_text;
+      double                   no_fail_thickness = 1;
+      IO::CrackTipTracker<dim> crack_tip;
+      std::vector<Point<dim>>  probe_points;
       /// Per probe: the local index of the nearest node if this process
       /// owns it, else invalid.
       std::vector<unsigned int> probe_nodes;

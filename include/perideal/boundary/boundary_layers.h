@@ -1,0 +1,64 @@
+#ifndef perideal_boundary_boundary_layers_h
+#define perideal_boundary_boundary_layers_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/types.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <perideal/discretization/node_set.h>
+
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Boundary
+  {
+    using namespace dealii;
+
+    /**
+     * Volumetric layers along parts of the boundary: which nodes lie closer
+     * than a thickness to a boundary face with a given id. Dirichlet layers
+     * (BoundaryConditions::make_constraints) and the no-fail layers of
+     * explicit dynamics both use it.
+     *
+     * The faces of every listed id are gathered from all processes (a layer
+     * can be several cells thick and cross partition boundaries) into one
+     * R-tree per id, so that the answer for a node does not depend on the
+     * partition.
+     */
+    template <int dim>
+    class BoundaryLayers
+    {
+    public:
+      /**
+       * Collect the faces with the (sorted, unique) @p ids of the locally
+       * owned cells of @p triangulation from all processes. Collective.
+       */
+      BoundaryLayers(const Triangulation<dim>              &triangulation,
+                     const std::vector<types::boundary_id> &ids);
+
+      /**
+       * For each node (owned and ghost) of @p nodes: the position in the id
+       * list of the first id whose layer of @p thickness holds the node, or
+       * numbers::invalid_unsigned_int. Nodes at exactly the thickness (up to
+       * a relative 1e-10) are outside, so that the decision does not depend
+       * on round-off in the node coordinates.
+       *
+       * @p n_owned_per_id, if given, receives the number of owned nodes in
+       * the layer of each id (a node near two faces counts for both),
+       * summed over all processes: the call is then collective.
+       */
+      std::vector<unsigned int>
+      layer_of_nodes(const Discretization::NodeSet<dim> &nodes,
+                     const double                        thickness,
+                     std::vector<unsigned int> *n_owned_per_id = nullptr,
+                     const MPI_Comm             comm = MPI_COMM_WORLD) const;
+
+    private:
+      std::vector<std::vector<BoundingBox<dim>>> faces;
+    };
+  } // namespace Boundary
+} // namespace PeriDEAL
+
+#endif

@@ -1,0 +1,114 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/boost_adaptors/bounding_box.h>
+
+#include <deal.II/numerics/rtree.h>
+
+#include <perideal/boundary/boundary_layers.h>
+
+#include <algorithm>
+
+namespace PeriDEAL
+{
+  namespace Boundary
+  {
+    namespace
+    {
+      template <int dim>
+      double
+      distance_squared(const BoundingBox<dim> &box, const Point<dim> &p)
+      {
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double below = box.lower_bound(d) - p[d];
+            const double above = p[d] - box.upper_bound(d);
+            const double gap   = std::max(0., std::max(below, above));
+            d2 += gap * gap;
+          }
+        return d2;
+      }
+    } // namespace
+
+
+    template <int dim>
+    BoundaryLayers<dim>::BoundaryLayers(
+      const Triangulation<dim>              &triangulation,
+      const std::vector<types::boundary_id> &ids)
+      : faces(ids.size())
+    {
+      std::vector<std::vector<BoundingBox<dim>>> local(ids.size());
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f))
+              {
+                const auto k = std::find(ids.begin(),
+                                         ids.end(),
+                                         cell->face(f)->boundary_id()) -
+                               ids.begin();
+                if (k == static_cast<long>(ids.size()))
+                  continue;
+                std::vector<Point<dim>> vertices;
+                for (const unsigned int v : cell->face(f)->vertex_indices())
+                  vertices.push_back(cell->face(f)->vertex(v));
+                local[k].emplace_back(vertices);
+              }
+      const MPI_Comm comm = triangulation.get_communicator();
+      for (unsigned int k = 0; k < ids.size(); ++k)
+        for (const auto &part : Utilities::MPI::all_gather(comm, local[k]))
+          faces[k].insert(faces[k].end(), part.begin(), part.end());
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    BoundaryLayers<dim>::layer_of_nodes(
+      const Discretization::NodeSet<dim> &nodes,
+      const double                        thickness,
+      std::vector<unsigned int>          *n_owned_per_id,
+      const MPI_Comm                      comm) const
+    {
+      std::vector<decltype(pack_rtree(faces[0]))> trees;
+      for (const auto &f : faces)
+        trees.push_back(pack_rtree(f));
+      const double                  limit = thickness * (1 - 1e-10);
+      std::vector<unsigned int>     layer(nodes.size(),
+                                      numbers::invalid_unsigned_int);
+      std::vector<unsigned int>     count(faces.size(), 0);
+      std::vector<BoundingBox<dim>> candidates;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const auto      &x = nodes[i].location;
+          BoundingBox<dim> search(std::make_pair(x, x));
+          search.extend(thickness);
+          for (unsigned int k = 0; k < trees.size(); ++k)
+            {
+              candidates.clear();
+              trees[k].query(boost::geometry::index::intersects(search),
+                             std::back_inserter(candidates));
+              for (const auto &face : candidates)
+                if (distance_squared(face, x) < limit * limit)
+                  {
+                    if (layer[i] == numbers::invalid_unsigned_int)
+                      layer[i] = k;
+                    if (i < nodes.n_owned())
+                      ++count[k];
+                    break;
+                  }
+            }
+        }
+      if (n_owned_per_id != nullptr)
+        {
+          if (!count.empty())
+            Utilities::MPI::sum(count, comm, count);
+          *n_owned_per_id = count;
+        }
+      return layer;
+    }
+
+
+    template class BoundaryLayers<2>;
+    template class BoundaryLayers<3>;
+  } // namespace Boundary
+} // namespace PeriDEAL
