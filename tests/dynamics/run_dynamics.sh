@@ -12,6 +12,10 @@
 #          keeps it constant up to its O(dt^2) oscillation)
 #      # check: min_new_broken_bonds <n>
 #          bonds broken during the run (beyond the pre-crack) >= n
+#      # check: crack_angle <x0> <y0> <min_deg> <max_deg>
+#          the tracked crack tip (columns tip_x, tip_y) at the end lies in
+#          the direction atan2(tip_y - y0, tip_x - x0) within [min, max]
+#          degrees, at least two cells away from (x0, y0)
 #  - the energy history (energies.csv: energies to 1e-8 relative, broken
 #    bonds exactly) against EXPECTED.output, the same file for 1 and 2
 #    processes: the partition must not change the answer (a snapshot for
@@ -54,6 +58,17 @@ min_new=$(sed -n 's/^# check: min_new_broken_bonds *//p' input.prm)
 if [ -n "$min_new" ]; then
   awk -F, -v n="$min_new" 'NR == 2 { b0 = $7 } END { printf "bonds broken during the run: %d (at least %d)\n", $7 - b0, n; exit !($7 - b0 >= n) }' "$csv" \
     || { cat "$csv"; echo "FAIL: too few bonds broke"; exit 1; }
+fi
+
+angle=$(sed -n 's/^# check: crack_angle *//p' input.prm)
+if [ -n "$angle" ]; then
+  awk -F, -v spec="$angle" 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next }
+    { x = $col["tip_x"]; y = $col["tip_y"] }
+    END { split(spec, a, " "); dx = x - a[1]; dy = y - a[2]
+          deg = atan2(dy, dx) * 45 / atan2(1, 1); r = sqrt(dx * dx + dy * dy)
+          printf "crack tip at (%g, %g): %.1f deg from (%s, %s), %g away (expected %s to %s deg)\n", x, y, deg, a[1], a[2], r, a[3], a[4]
+          exit !(deg >= a[3] && deg <= a[4] && r > 0) }' "$csv" \
+    || { echo "FAIL: crack angle"; exit 1; }
 fi
 
 # Energies to 1e-8 relative; the broken-bond counts (integers) exactly.
