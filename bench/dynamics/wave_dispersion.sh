@@ -29,6 +29,7 @@ dt4     3 2 4
 dt8     3 2 8
 w1_dt4  3 1 4
 w4_dt4  3 4 4
+w8_dt4  3 8 4
 m4_dt4  4 2 4
 m6_dt4  6 2 4
 energy     3 2 1 energy
