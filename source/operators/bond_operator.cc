@@ -4,8 +4,6 @@
 #include <perideal/operators/bond_operator.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <limits>
 
 namespace PeriDEAL
 {
@@ -78,69 +76,15 @@ namespace PeriDEAL
                              "numbered consecutively (FESystem of "
                              "FE_DGQ(0) without renumbering)."));
 
-      // Slots: on a uniform grid the box of the process's lattice
-      // coordinates, padded by the stencil's reach in every direction, so
-      // that every stencil offset from every node lands inside the box
-      // (no wrap-around into another row): a node near the surface can
-      // then run the stencil loop with a mask of the empty slots. Node
-      // indices otherwise, or when the box is much larger than the node set
-      // (a scattered partition).
+      // Slots: the lattice box on a uniform grid, unless it is much larger
+      // than the node set (a scattered partition); node indices otherwise.
       const auto &lattice = lists->lattice();
-      use_lattice         = lattice.is_uniform() && !lists->stencil().empty();
-      std::array<std::int64_t, dim> box_lower{}, box_size{};
-      if (use_lattice)
-        {
-          std::array<std::int64_t, dim> reach{}, upper{};
-          for (const auto &o : lists->stencil())
-            for (unsigned int d = 0; d < dim; ++d)
-              reach[d] =
-                std::max<std::int64_t>(reach[d], std::abs(o.offset[d]));
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              box_lower[d] = std::numeric_limits<std::int64_t>::max();
-              upper[d]     = std::numeric_limits<std::int64_t>::min();
-            }
-          for (unsigned int i = 0; i < n; ++i)
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                box_lower[d] =
-                  std::min(box_lower[d], lattice.coordinates(i)[d]);
-                upper[d] = std::max(upper[d], lattice.coordinates(i)[d]);
-              }
-          double size = 1;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              box_lower[d] = n > 0 ? box_lower[d] - reach[d] : 0;
-              box_size[d]  = n > 0 ? upper[d] + reach[d] - box_lower[d] + 1 : 0;
-              size *= box_size[d];
-            }
-          use_lattice = size <= 8. * n + 4096;
-        }
+      use_lattice         = lattice.is_uniform() && !lists->stencil().empty() &&
+                    lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
       slot.resize(n);
-      n_slots = use_lattice ? 1 : n;
-      if (use_lattice)
-        for (unsigned int d = 0; d < dim; ++d)
-          n_slots *= box_size[d];
+      n_slots = use_lattice ? lattice.n_slots() : n;
       for (unsigned int i = 0; i < n; ++i)
-        if (use_lattice)
-          {
-            std::size_t s = 0;
-            for (int d = dim - 1; d >= 0; --d)
-              s = s * box_size[d] + (lattice.coordinates(i)[d] - box_lower[d]);
-            slot[i] = s;
-          }
-        else
-          slot[i] = i;
-      slot_to_node.assign(use_lattice ? n_slots : 0, -1);
-      if (use_lattice)
-        for (unsigned int i = 0; i < n; ++i)
-          slot_to_node[slot[i]] = i;
-      const auto slot_offset = [&](const std::array<int, dim> &offset) {
-        std::ptrdiff_t s = 0;
-        for (int d = dim - 1; d >= 0; --d)
-          s = s * static_cast<std::ptrdiff_t>(box_size[d]) + offset[d];
-        return s;
-      };
+        slot[i] = use_lattice ? lattice.slot(i) : i;
 
       // Reference weighted volumes (every bond, broken or not).
       const double h  = lattice.spacing();
@@ -180,7 +124,7 @@ namespace PeriDEAL
                 xi[d] = o.offset[d] * h;
               const double r = xi.norm();
               const double w = o.beta * volume;
-              stencil.slot_offset.push_back(slot_offset(o.offset));
+              stencil.slot_offset.push_back(lattice.slot_offset(o.offset));
               for (unsigned int d = 0; d < dim; ++d)
                 {
                   stencil.n[d].push_back(xi[d] / r);
@@ -256,37 +200,6 @@ namespace PeriDEAL
                   lists->stencil_index(i, bond.neighbor));
             bond_stencil_first[i + 1] = bond_stencil_index.size();
           }
-
-      // Nodes off the full stencil that can run the stencil loop with a
-      // mask: on the lattice, with a stored list whose bonds are exactly
-      // the stencil offsets that land on a node of this process (the bonds
-      // are a subset of those, so equal counts mean equal sets). Typically
-      // every node near the surface of the body; ghost nodes whose list is
-      // cut off by the end of the ghost layer qualify as well, since the
-      // mask reproduces their list. present_slot is the mask (1 on a node,
-      // 0 on an empty slot), theta_factor_slot = s(m_i) m_0 / m_i.
-      maskable.assign(use_lattice ? n : 0, false);
-      present_slot.resize_fast(use_lattice ? n_slots : 0);
-      theta_factor_slot.resize_fast(use_lattice ? n_slots : 0);
-      if (use_lattice)
-        {
-          std::fill(present_slot.begin(), present_slot.end(), 0.);
-          std::fill(theta_factor_slot.begin(), theta_factor_slot.end(), 0.);
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              present_slot[slot[i]] = 1;
-              theta_factor_slot[slot[i]] =
-                m[i] > 0 ? s_slot[slot[i]] * (m0 / m[i]) : 0.;
-            }
-          for (unsigned int i = 0; i < n; ++i)
-            if (lists->has_list(i) && !lists->has_full_stencil(i))
-              {
-                std::size_t n_present = 0;
-                for (const auto o : stencil.slot_offset)
-                  n_present += slot_to_node[slot[i] + o] >= 0;
-                maskable[i] = n_present == lists->n_bonds(i);
-              }
-        }
 
       build_work_lists();
     }
@@ -371,39 +284,6 @@ namespace PeriDEAL
       };
       make_chunks(needs_theta, theta_chunks);
       make_chunks(needs_force, force_chunks);
-
-      // The masked stencil loop (finite kinematics and failure only): runs
-      // of consecutive slots of intact maskable nodes; the other nodes off
-      // the stencil stay on lists.
-      const auto masked = [&](const unsigned int i) {
-        return use_lattice && maskable[i] &&
-               !(bond_state != nullptr && bond_state->any_broken(i));
-      };
-      auto make_masked_chunks = [&](const std::vector<bool>   &needed,
-                                    std::vector<Chunk>        &chunks,
-                                    std::vector<unsigned int> &rest) {
-        std::vector<std::size_t> slots;
-        rest.clear();
-        for (unsigned int i = 0; i < n; ++i)
-          if (needed[i] && !on_stencil(i))
-            {
-              if (masked(i))
-                slots.push_back(slot[i]);
-              else
-                rest.push_back(i);
-            }
-        std::sort(slots.begin(), slots.end());
-        chunks.clear();
-        for (std::size_t k = 0; k < slots.size(); ++k)
-          if (!chunks.empty() &&
-              chunks.back().first_slot + chunks.back().length == slots[k] &&
-              chunks.back().length < chunk_size)
-            ++chunks.back().length;
-          else
-            chunks.push_back({slots[k], 1});
-      };
-      make_masked_chunks(needs_theta, masked_theta_chunks, theta_rest_nodes);
-      make_masked_chunks(needs_force, masked_force_chunks, force_rest_nodes);
 
       theta_list_nodes.clear();
       force_list_nodes.clear();
@@ -890,17 +770,6 @@ namespace PeriDEAL
 
     template <int dim>
     unsigned int
-    BondOperator<dim>::n_masked_nodes() const
-    {
-      unsigned int n = 0;
-      for (const auto &chunk : masked_force_chunks)
-        n += chunk.length;
-      return n;
-    }
-
-
-    template <int dim>
-    unsigned int
     BondOperator<dim>::n_list_nodes() const
     {
       return force_list_nodes.size();
@@ -939,12 +808,6 @@ namespace PeriDEAL
           sizeof(std::uint16_t) +
         bond_stencil_first.capacity() * sizeof(std::size_t) +
         list_theta_scale.capacity() * sizeof(double) +
-        (masked_theta_chunks.capacity() + masked_force_chunks.capacity()) *
-          sizeof(Chunk) +
-        (theta_rest_nodes.capacity() + force_rest_nodes.capacity()) *
-          sizeof(unsigned int) +
-        maskable.capacity() / 8 + slot_to_node.capacity() * sizeof(int) +
-        (present_slot.size() + theta_factor_slot.size()) * sizeof(double) +
         (2 * dim + 2) * n_slots * sizeof(double) +
         s0_slot.size() * sizeof(double);
       return bytes;

@@ -103,97 +103,77 @@ namespace PeriDEAL
     BondOperator<dim>::nonlinear_dilatation_pass() const
     {
       const std::size_t n_offsets = stencil.slot_offset.size();
-      // The stencil loop over runs of bulk nodes (all offsets present), and
-      // with a mask over runs of intact nodes near the surface (an offset
-      // onto an empty slot contributes nothing and never fails).
-      const auto chunk_loop = [&](const std::vector<Chunk> &chunks,
-                                  auto                      masked_tag) {
-        constexpr bool masked = decltype(masked_tag)::value;
-        parallel::apply_to_subranges(
-          std::size_t(0),
-          chunks.size(),
-          [&](const std::size_t begin, const std::size_t end) {
-            // Bonds over their critical stretch, found in this subrange
-            // (allocates only when a bond fails), handed over once.
-            std::vector<ExceededBond> found;
-            alignas(64) double        theta[chunk_size];
-            alignas(64) unsigned char failed[chunk_size];
-            for (std::size_t c = begin; c < end; ++c)
-              {
-                const std::size_t  s0  = chunks[c].first_slot;
-                const unsigned int len = chunks[c].length;
-                for (unsigned int l = 0; l < len; ++l)
-                  theta[l] = 0;
-                for (std::size_t k = 0; k < n_offsets; ++k)
-                  {
-                    const std::ptrdiff_t o = stencil.slot_offset[k];
-                    const double         g = stencil.g[k], r = stencil.r[k],
-                                 inv_r = stencil.inv_r[k];
-                    double        xi[dim], nk[dim];
-                    const double *ui[dim], *uj[dim];
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        xi[d] = stencil.xi[d][k];
-                        nk[d] = stencil.n[d][k];
-                        ui[d] = u_slot[d].data() + s0;
-                        uj[d] = ui[d] + o;
-                      }
-                    const double *ci = s0_slot.data() + s0, *cj = ci + o;
-                    const double *pj       = present_slot.data() + s0 + o;
-                    int           n_failed = 0;
-                    (void)pj;
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        theta_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          // Bonds over their critical stretch, found in this subrange
+          // (allocates only when a bond fails), handed over once.
+          std::vector<ExceededBond> found;
+          alignas(64) double        theta[chunk_size];
+          alignas(64) unsigned char failed[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = theta_chunks[c].first_slot;
+              const unsigned int len = theta_chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
+                theta[l] = 0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = stencil.slot_offset[k];
+                  const double         g = stencil.g[k], r = stencil.r[k],
+                               inv_r = stencil.inv_r[k];
+                  double        xi[dim], nk[dim];
+                  const double *ui[dim], *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      xi[d] = stencil.xi[d][k];
+                      nk[d] = stencil.n[d][k];
+                      ui[d] = u_slot[d].data() + s0;
+                      uj[d] = ui[d] + o;
+                    }
+                  const double *ci = s0_slot.data() + s0, *cj = ci + o;
+                  int           n_failed = 0;
 #pragma omp simd reduction(+ : n_failed)
-                    for (unsigned int l = 0; l < len; ++l)
-                      {
-                        double e = 0;
-                        if constexpr (finite_kinematics)
-                          {
-                            double length2 = 0;
-                            for (unsigned int d = 0; d < dim; ++d)
-                              {
-                                const double y = xi[d] + (uj[d][l] - ui[d][l]);
-                                length2 += y * y;
-                              }
-                            e = std::sqrt(length2) - r;
-                          }
-                        else
+                  for (unsigned int l = 0; l < len; ++l)
+                    {
+                      double e = 0;
+                      if constexpr (finite_kinematics)
+                        {
+                          double length2 = 0;
                           for (unsigned int d = 0; d < dim; ++d)
-                            e += nk[d] * (uj[d][l] - ui[d][l]);
-                        const bool below  = e * inv_r < std::min(ci[l], cj[l]);
-                        bool       intact = below, broken = !below;
-                        if constexpr (masked)
-                          {
-                            intact = below && pj[l] > 0;
-                            broken = !below && pj[l] > 0;
-                          }
-                        theta[l] += intact ? g * e : 0.;
-                        failed[l] = broken;
-                        n_failed += broken;
-                      }
-                    if (n_failed > 0)
-                      for (unsigned int l = 0; l < len; ++l)
-                        if (failed[l])
-                          found.emplace_back(node_of_slot(s0 + l),
-                                             node_of_slot(s0 + l + o));
-                  }
-                if constexpr (masked)
-                  for (unsigned int l = 0; l < len; ++l)
-                    t_slot[s0 + l] = theta_factor_slot[s0 + l] * theta[l];
-                else
-                  for (unsigned int l = 0; l < len; ++l)
-                    t_slot[s0 + l] = stencil.node_factor * theta[l];
-              }
-            if (!found.empty())
-              record_exceeded(found);
-          },
-          chunk_grain);
-      };
-      chunk_loop(theta_chunks, std::false_type());
-      chunk_loop(masked_theta_chunks, std::true_type());
+                            {
+                              const double y = xi[d] + (uj[d][l] - ui[d][l]);
+                              length2 += y * y;
+                            }
+                          e = std::sqrt(length2) - r;
+                        }
+                      else
+                        for (unsigned int d = 0; d < dim; ++d)
+                          e += nk[d] * (uj[d][l] - ui[d][l]);
+                      const bool intact = e * inv_r < std::min(ci[l], cj[l]);
+                      theta[l] += intact ? g * e : 0.;
+                      failed[l] = !intact;
+                      n_failed += !intact;
+                    }
+                  if (n_failed > 0)
+                    for (unsigned int l = 0; l < len; ++l)
+                      if (failed[l])
+                        found.emplace_back(node_of_slot(s0 + l),
+                                           node_of_slot(s0 + l + o));
+                }
+              const double s = stencil.node_factor;
+              for (unsigned int l = 0; l < len; ++l)
+                t_slot[s0 + l] = s * theta[l];
+            }
+          if (!found.empty())
+            record_exceeded(found);
+        },
+        chunk_grain);
 
       parallel::apply_to_subranges(
         std::size_t(0),
-        theta_rest_nodes.size(),
+        theta_list_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
           // Bonds over their critical stretch, found in this subrange
           // (allocates only when a bond fails), handed over once.
@@ -220,7 +200,7 @@ namespace PeriDEAL
           (void)ss;
           for (std::size_t q = begin; q < end; ++q)
             {
-              const unsigned int i     = theta_rest_nodes[q];
+              const unsigned int i     = theta_list_nodes[q];
               const std::size_t  si    = slot[i];
               double             theta = 0;
               const auto         visit = [&](const std::size_t sj,
@@ -314,122 +294,107 @@ namespace PeriDEAL
     {
       const std::size_t n_offsets = stencil.slot_offset.size();
       const bool        sb        = state_based;
-      // As in the dilatation pass: bulk runs, then masked runs.
-      const auto chunk_loop = [&](const std::vector<Chunk> &chunks,
-                                  auto                      masked_tag) {
-        constexpr bool masked = decltype(masked_tag)::value;
-        parallel::apply_to_subranges(
-          std::size_t(0),
-          chunks.size(),
-          [&](const std::size_t begin, const std::size_t end) {
-            // Bonds over their critical stretch, found in this subrange
-            // (allocates only when a bond fails), handed over once.
-            std::vector<ExceededBond> found;
-            alignas(64) double        force[dim][chunk_size];
-            alignas(64) unsigned char failed[chunk_size];
-            for (std::size_t c = begin; c < end; ++c)
-              {
-                const std::size_t  s0  = chunks[c].first_slot;
-                const unsigned int len = chunks[c].length;
-                for (unsigned int d = 0; d < dim; ++d)
-                  for (unsigned int l = 0; l < len; ++l)
-                    force[d][l] = 0;
-                const double *ui[dim];
-                for (unsigned int d = 0; d < dim; ++d)
-                  ui[d] = u_slot[d].data() + s0;
-                const double *ti = t_slot.data() + s0;
-                const double *si = s_slot.data() + s0;
-                const double *ci = s0_slot.data() + s0;
-                for (std::size_t k = 0; k < n_offsets; ++k)
-                  {
-                    const std::ptrdiff_t o = stencil.slot_offset[k];
-                    // Bond-based: s = 1 at every node, theta = 0.
-                    const double a = sb ? stencil.a[k] : 0.;
-                    const double b = stencil.b[k], r = stencil.r[k],
-                                 inv_r = stencil.inv_r[k];
-                    double        xi[dim], nk[dim];
-                    const double *uj[dim];
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        xi[d] = stencil.xi[d][k];
-                        nk[d] = stencil.n[d][k];
-                        uj[d] = ui[d] + o;
-                      }
-                    const double *tj = ti + o, *sj = si + o, *cj = ci + o;
-                    const double *pj       = present_slot.data() + s0 + o;
-                    int           n_failed = 0;
-                    (void)pj;
-                    // Bond-based models (s = 1, no dilatation) skip the loads
-                    // of the state-based terms.
-                    const auto lanes = [&](auto state_based_tag) {
-                      constexpr bool with_state =
-                        decltype(state_based_tag)::value;
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        force_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          // Bonds over their critical stretch, found in this subrange
+          // (allocates only when a bond fails), handed over once.
+          std::vector<ExceededBond> found;
+          alignas(64) double        force[dim][chunk_size];
+          alignas(64) unsigned char failed[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = force_chunks[c].first_slot;
+              const unsigned int len = force_chunks[c].length;
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  force[d][l] = 0;
+              const double *ui[dim];
+              for (unsigned int d = 0; d < dim; ++d)
+                ui[d] = u_slot[d].data() + s0;
+              const double *ti = t_slot.data() + s0;
+              const double *si = s_slot.data() + s0;
+              const double *ci = s0_slot.data() + s0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = stencil.slot_offset[k];
+                  // Bond-based: s = 1 at every node, theta = 0.
+                  const double a = sb ? stencil.a[k] : 0.;
+                  const double b = stencil.b[k], r = stencil.r[k],
+                               inv_r = stencil.inv_r[k];
+                  double        xi[dim], nk[dim];
+                  const double *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      xi[d] = stencil.xi[d][k];
+                      nk[d] = stencil.n[d][k];
+                      uj[d] = ui[d] + o;
+                    }
+                  const double *tj = ti + o, *sj = si + o, *cj = ci + o;
+                  int           n_failed = 0;
+                  // Bond-based models (s = 1, no dilatation) skip the loads
+                  // of the state-based terms.
+                  const auto lanes = [&](auto state_based_tag) {
+                    constexpr bool with_state =
+                      decltype(state_based_tag)::value;
 #pragma omp simd reduction(+ : n_failed)
-                      for (unsigned int l = 0; l < len; ++l)
-                        {
-                          double y[dim], e = 0, scale = 1;
-                          if constexpr (finite_kinematics)
-                            {
-                              double length2 = 0;
-                              for (unsigned int d = 0; d < dim; ++d)
-                                {
-                                  y[d] = xi[d] + (uj[d][l] - ui[d][l]);
-                                  length2 += y[d] * y[d];
-                                }
-                              const double length = std::sqrt(length2);
-                              e                   = length - r;
-                              scale = length > 0 ? 1. / length : 0.;
-                            }
-                          else
+                    for (unsigned int l = 0; l < len; ++l)
+                      {
+                        double y[dim], e = 0, scale = 1;
+                        if constexpr (finite_kinematics)
+                          {
+                            double length2 = 0;
                             for (unsigned int d = 0; d < dim; ++d)
                               {
-                                y[d] = nk[d];
-                                e += nk[d] * (uj[d][l] - ui[d][l]);
+                                y[d] = xi[d] + (uj[d][l] - ui[d][l]);
+                                length2 += y[d] * y[d];
                               }
-                          const bool below = e * inv_r < std::min(ci[l], cj[l]);
-                          bool       intact = below, broken = !below;
-                          if constexpr (masked)
-                            {
-                              intact = below && pj[l] > 0;
-                              broken = !below && pj[l] > 0;
-                            }
-                          double t;
-                          if constexpr (with_state)
-                            t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
-                          else
-                            t = 2 * b * e;
-                          const double ty = intact ? t * scale : 0.;
+                            const double length = std::sqrt(length2);
+                            e                   = length - r;
+                            scale               = length > 0 ? 1. / length : 0.;
+                          }
+                        else
                           for (unsigned int d = 0; d < dim; ++d)
-                            force[d][l] += ty * y[d];
-                          failed[l] = broken;
-                          n_failed += broken;
-                        }
-                    };
-                    if (sb)
-                      lanes(std::true_type());
-                    else
-                      lanes(std::false_type());
-                    if (n_failed > 0)
-                      for (unsigned int l = 0; l < len; ++l)
-                        if (failed[l])
-                          found.emplace_back(node_of_slot(s0 + l),
-                                             node_of_slot(s0 + l + o));
-                  }
-                for (unsigned int d = 0; d < dim; ++d)
-                  for (unsigned int l = 0; l < len; ++l)
-                    f_slot[d][s0 + l] = force[d][l];
-              }
-            if (!found.empty())
-              record_exceeded(found);
-          },
-          chunk_grain);
-      };
-      chunk_loop(force_chunks, std::false_type());
-      chunk_loop(masked_force_chunks, std::true_type());
+                            {
+                              y[d] = nk[d];
+                              e += nk[d] * (uj[d][l] - ui[d][l]);
+                            }
+                        const bool intact = e * inv_r < std::min(ci[l], cj[l]);
+                        double     t;
+                        if constexpr (with_state)
+                          t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                        else
+                          t = 2 * b * e;
+                        const double ty = intact ? t * scale : 0.;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          force[d][l] += ty * y[d];
+                        failed[l] = !intact;
+                        n_failed += !intact;
+                      }
+                  };
+                  if (sb)
+                    lanes(std::true_type());
+                  else
+                    lanes(std::false_type());
+                  if (n_failed > 0)
+                    for (unsigned int l = 0; l < len; ++l)
+                      if (failed[l])
+                        found.emplace_back(node_of_slot(s0 + l),
+                                           node_of_slot(s0 + l + o));
+                }
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  f_slot[d][s0 + l] = force[d][l];
+            }
+          if (!found.empty())
+            record_exceeded(found);
+        },
+        chunk_grain);
 
       parallel::apply_to_subranges(
         std::size_t(0),
-        force_rest_nodes.size(),
+        force_list_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
           // Bonds over their critical stretch, found in this subrange
           // (allocates only when a bond fails), handed over once.
@@ -456,7 +421,7 @@ namespace PeriDEAL
           (void)ss;
           for (std::size_t q = begin; q < end; ++q)
             {
-              const unsigned int i      = force_rest_nodes[q];
+              const unsigned int i      = force_list_nodes[q];
               const std::size_t  si     = slot[i];
               double             f[dim] = {};
               const auto         visit  = [&](const std::size_t sj,

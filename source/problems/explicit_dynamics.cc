@@ -501,9 +501,8 @@ namespace PeriDEAL
         << "[" << std::setw(8) << std::fixed << std::setprecision(2)
         << simulator.elapsed()
         << " s] explicit dynamics: " << simulator.get_summary().n_nodes
-        << " nodes (" << n_stencil << " on the shared stencil, "
-        << Utilities::MPI::sum(bond_operator.n_masked_nodes(), comm)
-        << " on the masked stencil), " << visits << " bond visits per step, "
+        << " nodes (" << n_stencil << " on the shared stencil), " << visits
+        << " bond visits per step, "
         << (finite_kinematics ? "finite deformation" : "small strain")
         << ", critical stretch "
         << (std::isfinite(s0) ? to_string(s0) :

@@ -226,14 +226,6 @@ namespace PeriDEAL
       unsigned int
       n_list_nodes() const;
 
-      /**
-       * Owned nodes among those off the shared stencil that the finite
-       * kinematics and failure passes evaluate with the masked stencil loop
-       * (intact nodes near the surface of a uniform grid).
-       */
-      unsigned int
-      n_masked_nodes() const;
-
       /// Bond visits of one apply() on this process (both passes).
       std::size_t
       n_bond_visits() const;
@@ -313,17 +305,8 @@ namespace PeriDEAL
       std::vector<std::size_t>   bond_stencil_first;
       std::vector<double>        list_theta_scale; // m_0 / m_i per node
       std::vector<unsigned int>  owned_slots;
-      // The masked stencil loop of nodes near the surface (finite
-      // kinematics and failure): per node whether its bonds are exactly
-      // the stencil offsets that land on a node; its runs of slots; the
-      // nodes off the stencil that stay on lists.
-      std::vector<bool>         maskable;
-      std::vector<Chunk>        masked_theta_chunks, masked_force_chunks;
-      std::vector<unsigned int> theta_rest_nodes, force_rest_nodes;
-      // The node in each slot of the (padded) box, -1 for none.
-      std::vector<int> slot_to_node;
-      unsigned int     n_owned_stencil = 0;
-      std::size_t      bond_visits     = 0;
+      unsigned int               n_owned_stencil = 0;
+      std::size_t                bond_visits     = 0;
 
       // Scratch: displacement, force, s * theta and s per slot; the
       // critical stretch per slot (with failure).
@@ -331,9 +314,7 @@ namespace PeriDEAL
       mutable AlignedVector<double>                  t_slot;
       AlignedVector<double>                          s_slot;
       AlignedVector<double>                          s0_slot;
-      // 1 on a slot that holds a node, 0 on an empty one; s(m_i) m_0 / m_i.
-      AlignedVector<double> present_slot, theta_factor_slot;
-      std::vector<double>   critical_stretch;
+      std::vector<double>                            critical_stretch;
       // Bonds over their critical stretch, until committed (rare events:
       // a lock per record).
       mutable std::vector<ExceededBond> exceeded;
@@ -400,8 +381,9 @@ namespace PeriDEAL
     inline unsigned int
     BondOperator<dim>::node_of_slot(const std::size_t s) const
     {
-      return use_lattice ? static_cast<unsigned int>(slot_to_node[s]) :
-                           static_cast<unsigned int>(s);
+      return use_lattice ?
+               static_cast<unsigned int>(lists->lattice().node_at_slot(s)) :
+               static_cast<unsigned int>(s);
     }
   } // namespace Operators
 } // namespace PeriDEAL
