@@ -111,7 +111,7 @@ namespace PeriDEAL
           // (allocates only when a bond fails), handed over once.
           std::vector<ExceededBond> found;
           alignas(64) double        theta[chunk_size];
-          alignas(64) unsigned char failed[chunk_size];
+          alignas(64) double        failed[chunk_size];
           for (std::size_t c = begin; c < end; ++c)
             {
               const std::size_t  s0  = theta_chunks[c].first_slot;
@@ -133,7 +133,7 @@ namespace PeriDEAL
                       uj[d] = ui[d] + o;
                     }
                   const double *ci = s0_slot.data() + s0, *cj = ci + o;
-                  int           n_failed = 0;
+                  double        n_failed = 0;
 #pragma omp simd reduction(+ : n_failed)
                   for (unsigned int l = 0; l < len; ++l)
                     {
@@ -141,6 +141,7 @@ namespace PeriDEAL
                       if constexpr (finite_kinematics)
                         {
                           double length2 = 0;
+#pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
                             {
                               const double y = xi[d] + (uj[d][l] - ui[d][l]);
@@ -149,16 +150,17 @@ namespace PeriDEAL
                           e = std::sqrt(length2) - r;
                         }
                       else
+#pragma GCC unroll 3
                         for (unsigned int d = 0; d < dim; ++d)
                           e += nk[d] * (uj[d][l] - ui[d][l]);
                       const bool intact = e * inv_r < std::min(ci[l], cj[l]);
                       theta[l] += intact ? g * e : 0.;
-                      failed[l] = !intact;
-                      n_failed += !intact;
+                      failed[l] = intact ? 0. : 1.;
+                      n_failed += intact ? 0. : 1.;
                     }
                   if (n_failed > 0)
                     for (unsigned int l = 0; l < len; ++l)
-                      if (failed[l])
+                      if (failed[l] != 0)
                         found.emplace_back(node_of_slot(s0 + l),
                                            node_of_slot(s0 + l + o));
                 }
@@ -192,7 +194,7 @@ namespace PeriDEAL
               ns[d] = stencil.n[d].data();
               us[d] = u_slot[d].data();
             }
-          std::vector<unsigned char> failed(use_lattice ? stencil.r.size() : 0);
+          std::vector<double> failed(use_lattice ? stencil.r.size() : 0);
           (void)gs;
           (void)as;
           (void)bs;
@@ -236,7 +238,7 @@ namespace PeriDEAL
                   double       ui[dim];
                   for (unsigned int d = 0; d < dim; ++d)
                     ui[d] = u_slot[d][si];
-                  int n_failed = 0;
+                  double n_failed = 0;
 #pragma omp simd reduction(+ : theta, n_failed)
                   for (std::size_t b = first; b < last; ++b)
                     {
@@ -246,6 +248,7 @@ namespace PeriDEAL
                       if constexpr (finite_kinematics)
                         {
                           double length2 = 0;
+#pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
                             {
                               const double y = xs[d][k] + (us[d][sj] - ui[d]);
@@ -254,17 +257,18 @@ namespace PeriDEAL
                           e = std::sqrt(length2) - rs[k];
                         }
                       else
+#pragma GCC unroll 3
                         for (unsigned int d = 0; d < dim; ++d)
                           e += ns[d][k] * (us[d][sj] - ui[d]);
                       const bool intact =
                         e * inv_rs[k] < std::min(c_i, s0s[sj]);
                       theta += intact ? gs[k] * e : 0.;
-                      failed[b - first] = !intact;
-                      n_failed += !intact;
+                      failed[b - first] = intact ? 0. : 1.;
+                      n_failed += intact ? 0. : 1.;
                     }
                   if (n_failed > 0)
                     for (std::size_t b = first; b < last; ++b)
-                      if (failed[b - first])
+                      if (failed[b - first] != 0)
                         found.emplace_back(i,
                                            node_of_slot(si + offset[index[b]]));
                   theta *= list_theta_scale[i];
@@ -302,7 +306,7 @@ namespace PeriDEAL
           // (allocates only when a bond fails), handed over once.
           std::vector<ExceededBond> found;
           alignas(64) double        force[dim][chunk_size];
-          alignas(64) unsigned char failed[chunk_size];
+          alignas(64) double        failed[chunk_size];
           for (std::size_t c = begin; c < end; ++c)
             {
               const std::size_t  s0  = force_chunks[c].first_slot;
@@ -332,7 +336,7 @@ namespace PeriDEAL
                       uj[d] = ui[d] + o;
                     }
                   const double *tj = ti + o, *sj = si + o, *cj = ci + o;
-                  int           n_failed = 0;
+                  double        n_failed = 0;
                   // Bond-based models (s = 1, no dilatation) skip the loads
                   // of the state-based terms.
                   const auto lanes = [&](auto state_based_tag) {
@@ -345,6 +349,7 @@ namespace PeriDEAL
                         if constexpr (finite_kinematics)
                           {
                             double length2 = 0;
+#pragma GCC unroll 3
                             for (unsigned int d = 0; d < dim; ++d)
                               {
                                 y[d] = xi[d] + (uj[d][l] - ui[d][l]);
@@ -355,6 +360,7 @@ namespace PeriDEAL
                             scale               = length > 0 ? 1. / length : 0.;
                           }
                         else
+#pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
                             {
                               y[d] = nk[d];
@@ -367,10 +373,11 @@ namespace PeriDEAL
                         else
                           t = 2 * b * e;
                         const double ty = intact ? t * scale : 0.;
+#pragma GCC unroll 3
                         for (unsigned int d = 0; d < dim; ++d)
                           force[d][l] += ty * y[d];
-                        failed[l] = !intact;
-                        n_failed += !intact;
+                        failed[l] = intact ? 0. : 1.;
+                        n_failed += intact ? 0. : 1.;
                       }
                   };
                   if (sb)
@@ -379,7 +386,7 @@ namespace PeriDEAL
                     lanes(std::false_type());
                   if (n_failed > 0)
                     for (unsigned int l = 0; l < len; ++l)
-                      if (failed[l])
+                      if (failed[l] != 0)
                         found.emplace_back(node_of_slot(s0 + l),
                                            node_of_slot(s0 + l + o));
                 }
@@ -413,7 +420,7 @@ namespace PeriDEAL
               ns[d] = stencil.n[d].data();
               us[d] = u_slot[d].data();
             }
-          std::vector<unsigned char> failed(use_lattice ? stencil.r.size() : 0);
+          std::vector<double> failed(use_lattice ? stencil.r.size() : 0);
           (void)gs;
           (void)as;
           (void)bs;
@@ -467,46 +474,62 @@ namespace PeriDEAL
                                     last  = list_first[i + 1];
                   const double ti = t_slot[si], s_i = s_slot[si],
                                c_i = s0_slot[si];
-                  double ui[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    ui[d] = u_slot[d][si];
-                  double f0 = 0, f1 = 0, f2 = 0;
-                  int    n_failed = 0;
+                  // Scalars only inside the loop (no small arrays), so
+                  // that it vectorises over the bonds.
+                  const double ui0 = u_slot[0][si], ui1 = u_slot[1][si],
+                               ui2 = u_slot[dim - 1][si];
+                  const double *x0 = xs[0], *x1 = xs[1], *x2 = xs[dim - 1];
+                  const double *n0 = ns[0], *n1 = ns[1], *n2 = ns[dim - 1];
+                  const double *u0 = us[0], *u1 = us[1], *u2 = us[dim - 1];
+                  // Loop invariants as locals: a value read through the
+                  // closure inside the loop keeps it from vectorising.
+                  const bool with_state = sb;
+                  double    *flag       = failed.data();
+                  double     f0 = 0, f1 = 0, f2 = 0;
+                  double     n_failed = 0;
 #pragma omp simd reduction(+ : f0, f1, f2, n_failed)
                   for (std::size_t b = first; b < last; ++b)
                     {
                       const unsigned int k  = index[b];
                       const std::size_t  sj = si + offset[k];
-                      double             y[dim], e = 0, scale = 1;
+                      double             y0, y1, y2 = 0, e, scale = 1;
                       if constexpr (finite_kinematics)
                         {
-                          double length2 = 0;
-                          for (unsigned int d = 0; d < dim; ++d)
+                          y0             = x0[k] + (u0[sj] - ui0);
+                          y1             = x1[k] + (u1[sj] - ui1);
+                          double length2 = y0 * y0 + y1 * y1;
+                          if constexpr (dim == 3)
                             {
-                              y[d] = xs[d][k] + (us[d][sj] - ui[d]);
-                              length2 += y[d] * y[d];
+                              y2 = x2[k] + (u2[sj] - ui2);
+                              length2 += y2 * y2;
                             }
                           const double length = std::sqrt(length2);
                           e                   = length - rs[k];
                           scale               = length > 0 ? 1. / length : 0.;
                         }
                       else
-                        for (unsigned int d = 0; d < dim; ++d)
-                          {
-                            y[d] = ns[d][k];
-                            e += ns[d][k] * (us[d][sj] - ui[d]);
-                          }
+                        {
+                          y0 = n0[k];
+                          y1 = n1[k];
+                          e  = y0 * (u0[sj] - ui0) + y1 * (u1[sj] - ui1);
+                          if constexpr (dim == 3)
+                            {
+                              y2 = n2[k];
+                              e += y2 * (u2[sj] - ui2);
+                            }
+                        }
                       const bool intact =
                         e * inv_rs[k] < std::min(c_i, s0s[sj]);
-                      const double t = (sb ? as[k] * (ti + ts[sj]) : 0.) +
-                                       bs[k] * (s_i + ss[sj]) * e;
+                      const double t =
+                        (with_state ? as[k] * (ti + ts[sj]) : 0.) +
+                        bs[k] * (s_i + ss[sj]) * e;
                       const double ty = intact ? t * scale : 0.;
-                      f0 += ty * y[0];
-                      f1 += ty * y[1];
+                      f0 += ty * y0;
+                      f1 += ty * y1;
                       if constexpr (dim == 3)
-                        f2 += ty * y[dim - 1];
-                      failed[b - first] = !intact;
-                      n_failed += !intact;
+                        f2 += ty * y2;
+                      flag[b - first] = intact ? 0. : 1.;
+                      n_failed += intact ? 0. : 1.;
                     }
                   f[0] = f0;
                   f[1] = f1;
@@ -514,7 +537,7 @@ namespace PeriDEAL
                     f[dim - 1] = f2;
                   if (n_failed > 0)
                     for (std::size_t b = first; b < last; ++b)
-                      if (failed[b - first])
+                      if (failed[b - first] != 0)
                         found.emplace_back(i,
                                            node_of_slot(si + offset[index[b]]));
                 }
