@@ -25,6 +25,8 @@ namespace PeriDEAL
       n_broken_of.assign(n, 0);
       pending.clear();
       local.clear();
+      changed.clear();
+      is_changed.assign(n, false);
     }
 
 
@@ -38,6 +40,11 @@ namespace PeriDEAL
         return false;
       bits[b >> 6] |= mask;
       ++n_broken_of[i];
+      if (!is_changed[i])
+        {
+          is_changed[i] = true;
+          changed.push_back(i);
+        }
       return true;
     }
 
@@ -181,6 +188,20 @@ namespace PeriDEAL
               n_broken_of.size() * sizeof(unsigned int));
       AssertThrow(in, ExcMessage("The checkpoint's bond state is truncated."));
       pending.clear();
+      changed.clear();
+      is_changed.assign(is_changed.size(), false);
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    BondState<dim>::take_changed_nodes()
+    {
+      std::vector<unsigned int> result;
+      result.swap(changed);
+      for (const unsigned int i : result)
+        is_changed[i] = false;
+      return result;
     }
 
 

@@ -266,24 +266,8 @@ namespace PeriDEAL
         for (unsigned int i = 0; i < n; ++i)
           needs_theta[i] = lists->has_list(i);
 
-      auto make_chunks = [&](const std::vector<bool> &needed,
-                             std::vector<Chunk>      &chunks) {
-        std::vector<std::size_t> slots;
-        for (unsigned int i = 0; i < n; ++i)
-          if (needed[i] && on_stencil(i))
-            slots.push_back(slot[i]);
-        std::sort(slots.begin(), slots.end());
-        chunks.clear();
-        for (std::size_t k = 0; k < slots.size(); ++k)
-          if (!chunks.empty() &&
-              chunks.back().first_slot + chunks.back().length == slots[k] &&
-              chunks.back().length < chunk_size)
-            ++chunks.back().length;
-          else
-            chunks.push_back({slots[k], 1});
-      };
-      make_chunks(needs_theta, theta_chunks);
-      make_chunks(needs_force, force_chunks);
+      make_chunks(true, theta_chunks);
+      make_chunks(false, force_chunks);
 
       theta_list_nodes.clear();
       force_list_nodes.clear();
@@ -354,11 +338,129 @@ namespace PeriDEAL
           list_first[i + 1] =
             use_lattice ? list_stencil_index.size() : list_bonds.size();
         }
+      list_end.assign(list_first.begin() + 1, list_first.end());
+      is_listed.assign(n, 0);
+      for (const auto *work : {&theta_list_nodes, &force_list_nodes})
+        for (const unsigned int i : *work)
+          is_listed[i] = 1;
       const std::size_t stencil_size = stencil.slot_offset.size();
       for (const auto &chunk : theta_chunks)
         bond_visits += chunk.length * stencil_size;
       for (const auto &chunk : force_chunks)
         bond_visits += chunk.length * stencil_size;
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::make_chunks(const bool          for_theta,
+                                   std::vector<Chunk> &chunks) const
+    {
+      // Runs of consecutive slots of the nodes on the shared stencil that
+      // need the pass: every owned node for the forces, every node with a
+      // list for the dilatations of a state-based model.
+      const unsigned int       n = nodes->size();
+      std::vector<std::size_t> slots;
+      for (unsigned int i = 0; i < n; ++i)
+        if ((for_theta ? state_based && lists->has_list(i) :
+                         i < nodes->n_owned()) &&
+            on_stencil(i))
+          slots.push_back(slot[i]);
+      std::sort(slots.begin(), slots.end());
+      chunks.clear();
+      for (std::size_t k = 0; k < slots.size(); ++k)
+        if (!chunks.empty() &&
+            chunks.back().first_slot + chunks.back().length == slots[k] &&
+            chunks.back().length < chunk_size)
+          ++chunks.back().length;
+        else
+          chunks.push_back({slots[k], 1});
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::update_work_lists(
+      const std::vector<unsigned int> &changed)
+    {
+      if (!use_lattice)
+        {
+          build_work_lists();
+          return;
+        }
+      const unsigned int n_owned     = nodes->n_owned();
+      const auto         needs_theta = [&](const unsigned int i) {
+        return state_based && lists->has_list(i);
+      };
+      std::vector<unsigned int> listed, newcomers;
+      for (const unsigned int i : changed)
+        if (needs_theta(i) || i < n_owned)
+          (is_listed[i] ? listed : newcomers).push_back(i);
+
+      // The intact bonds of node i as stencil indices, from position pos.
+      const auto write_intact = [&](const unsigned int i, std::size_t pos) {
+        const unsigned int n_all = lists->n_bonds(i);
+        const bool         full  = lists->has_full_stencil(i);
+        for (unsigned int k = 0; k < n_all; ++k)
+          if (!bond_state->is_broken(i, k))
+            list_stencil_index[pos++] =
+              full ? k : bond_stencil_index[bond_stencil_first[i] + k];
+        return pos;
+      };
+      // Nodes already on lists lost bonds: their segments shrink in place
+      // (bonds only break), independently, on the thread pool.
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        listed.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t q = begin; q < end; ++q)
+            list_end[listed[q]] =
+              write_intact(listed[q], list_first[listed[q]]);
+        },
+        64);
+      if (!newcomers.empty())
+        {
+          // Nodes that leave the shared stencil get a segment at the end.
+          std::sort(newcomers.begin(), newcomers.end());
+          const double m0            = stencil_weighted_volume;
+          const auto   sorted_insert = [&](std::vector<unsigned int> &work,
+                                         const bool needed_theta) {
+            const std::size_t old_size = work.size();
+            for (const unsigned int i : newcomers)
+              if (needed_theta ? needs_theta(i) : i < n_owned)
+                work.push_back(i);
+            std::inplace_merge(work.begin(),
+                               work.begin() + old_size,
+                               work.end());
+          };
+          for (const unsigned int i : newcomers)
+            {
+              list_first[i] = list_stencil_index.size();
+              list_stencil_index.resize(list_first[i] + lists->n_bonds(i));
+              list_end[i] = write_intact(i, list_first[i]);
+              list_stencil_index.resize(list_end[i]);
+              list_theta_scale[i] = m[i] > 0 ? m0 / m[i] : 0.;
+              is_listed[i]        = 1;
+              if (i < n_owned && lists->has_full_stencil(i))
+                --n_owned_stencil;
+            }
+          if (state_based)
+            sorted_insert(theta_list_nodes, true);
+          sorted_insert(force_list_nodes, false);
+          make_chunks(true, theta_chunks);
+          make_chunks(false, force_chunks);
+        }
+
+      // Bond visits of one apply().
+      bond_visits = 0;
+      for (const unsigned int i : theta_list_nodes)
+        bond_visits += list_end[i] - list_first[i];
+      for (const unsigned int i : force_list_nodes)
+        bond_visits += list_end[i] - list_first[i];
+      const std::size_t stencil_size = stencil.slot_offset.size();
+      for (const auto *chunks : {&theta_chunks, &force_chunks})
+        for (const auto &chunk : *chunks)
+          bond_visits += chunk.length * stencil_size;
     }
 
 
@@ -436,8 +538,7 @@ namespace PeriDEAL
               double             theta = 0;
               if (use_lattice)
                 {
-                  for (std::size_t b = list_first[i]; b < list_first[i + 1];
-                       ++b)
+                  for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                     {
                       const unsigned int k  = list_stencil_index[b];
                       const std::size_t  sj = si + stencil.slot_offset[k];
@@ -449,7 +550,7 @@ namespace PeriDEAL
                   theta *= list_theta_scale[i];
                 }
               else
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                   {
                     const ListBond   &bond = list_bonds[b];
                     const std::size_t sj   = bond.neighbor_slot;
@@ -547,7 +648,7 @@ namespace PeriDEAL
               const std::size_t  si     = slot[i];
               double             f[dim] = {};
               if (use_lattice)
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                   {
                     const unsigned int k  = list_stencil_index[b];
                     const std::size_t  sj = si + stencil.slot_offset[k];
@@ -561,7 +662,7 @@ namespace PeriDEAL
                       f[d] += t * stencil.n[d][k];
                   }
               else
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                   {
                     const ListBond   &bond = list_bonds[b];
                     const std::size_t sj   = bond.neighbor_slot;
@@ -683,8 +784,7 @@ namespace PeriDEAL
                     for (unsigned int k = 0; k < stencil.g.size(); ++k)
                       add(k);
                   else
-                    for (std::size_t b = list_first[i]; b < list_first[i + 1];
-                         ++b)
+                    for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                       add(list_stencil_index[b]);
                   for (unsigned int c = 0; c < dim; ++c)
                     diagonal.local_element(vector_index[i] + c) =

@@ -92,7 +92,7 @@ namespace PeriDEAL
       }
       const std::size_t n_new = state.synchronize();
       if (n_new > 0)
-        build_work_lists();
+        update_work_lists(state.take_changed_nodes());
       return n_new;
     }
 
@@ -232,10 +232,9 @@ namespace PeriDEAL
               };
               if (use_lattice)
                 {
-                  const std::size_t first = list_first[i],
-                                    last  = list_first[i + 1];
-                  const double c_i        = s0_slot[si];
-                  double       ui[dim];
+                  const std::size_t first = list_first[i], last = list_end[i];
+                  const double      c_i = s0_slot[si];
+                  double            ui[dim];
                   for (unsigned int d = 0; d < dim; ++d)
                     ui[d] = u_slot[d][si];
                   double n_failed = 0;
@@ -274,7 +273,7 @@ namespace PeriDEAL
                   theta *= list_theta_scale[i];
                 }
               else
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                   {
                     const ListBond &bond = list_bonds[b];
                     double          xi[dim];
@@ -470,9 +469,8 @@ namespace PeriDEAL
                 {
                   // Vectorised over the node's bonds (gathers), with the
                   // failure decisions kept for the record.
-                  const std::size_t first = list_first[i],
-                                    last  = list_first[i + 1];
-                  const double ti = t_slot[si], s_i = s_slot[si],
+                  const std::size_t first = list_first[i], last = list_end[i];
+                  const double      ti = t_slot[si], s_i = s_slot[si],
                                c_i = s0_slot[si];
                   // Scalars only inside the loop (no small arrays), so
                   // that it vectorises over the bonds.
@@ -542,7 +540,7 @@ namespace PeriDEAL
                                            node_of_slot(si + offset[index[b]]));
                 }
               else
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                   {
                     const ListBond &bond = list_bonds[b];
                     double          xi[dim];
@@ -628,12 +626,11 @@ namespace PeriDEAL
                     for (unsigned int k = 0; k < stencil.r.size(); ++k)
                       visit(k);
                   else
-                    for (std::size_t b = list_first[i]; b < list_first[i + 1];
-                         ++b)
+                    for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                       visit(list_stencil_index[b]);
                 }
               else
-                for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+                for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
                   {
                     const ListBond &bond = list_bonds[b];
                     double          xi[dim];

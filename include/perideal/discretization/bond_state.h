@@ -113,6 +113,15 @@ namespace PeriDEAL
       std::size_t
       n_broken_global() const;
 
+      /**
+       * The nodes (local indices) that lost a bond since the last call, in
+       * the order their first new bond broke, each once; clears the record.
+       * Lets a consumer update what depends on a node's bonds for those
+       * nodes only.
+       */
+      std::vector<unsigned int>
+      take_changed_nodes();
+
     private:
       const NodeSet<dim>                                  *nodes = nullptr;
       const NeighborList<dim>                             *lists = nullptr;
@@ -120,6 +129,8 @@ namespace PeriDEAL
       std::vector<std::uint64_t>                           bits;
       std::vector<unsigned int>                            n_broken_of;
       std::vector<std::pair<std::uint64_t, std::uint64_t>> pending;
+      std::vector<unsigned int>                            changed;
+      std::vector<bool>                                    is_changed;
       std::unordered_map<std::uint64_t, unsigned int>      local;
 
       /// Set the bit of bond k of node i; whether it was intact.

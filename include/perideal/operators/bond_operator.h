@@ -293,7 +293,10 @@ namespace PeriDEAL
 
       std::vector<Chunk>        theta_chunks, force_chunks;
       std::vector<unsigned int> theta_list_nodes, force_list_nodes;
-      std::vector<std::size_t>  list_first;
+      // Segment [list_first[i], list_end[i]) of the bonds of node i in
+      // list_bonds or list_stencil_index; is_listed[i]: node i has one.
+      std::vector<std::size_t> list_first, list_end;
+      std::vector<char>        is_listed;
       // Off a lattice: one ListBond per bond. On a lattice the bonds of a
       // node off the shared stencil are a subset of the stencil: the
       // stencil index of each (2 bytes a bond), the constants shared.
@@ -350,6 +353,21 @@ namespace PeriDEAL
 
       void
       build_work_lists();
+
+      /// Runs of consecutive slots of the stencil nodes that need the
+      /// dilatation pass (@p for_theta) or the force pass.
+      void
+      make_chunks(const bool for_theta, std::vector<Chunk> &chunks) const;
+
+      /**
+       * After bonds of the nodes @p changed broke: shrink their list
+       * segments in place (in parallel), give the nodes that leave the
+       * shared stencil a segment at the end and re-cut the stencil runs.
+       * Costs the bonds of the changed nodes plus O(nodes), instead of the
+       * bonds of every list node as build_work_lists() does.
+       */
+      void
+      update_work_lists(const std::vector<unsigned int> &changed);
 
       void
       copy_in(const VectorType &displacement) const;
