@@ -42,7 +42,7 @@ echo "$cases" | while read -r dim h m v ranks threads; do
       "$here/kalthoff_winkler_${dim}d.prm.in" > "$work/$name.prm"
   ( cd "$work" && sed -i "s|set Directory = output|set Directory = $name|" "$name.prm" &&
     if [ "$ranks" -eq 1 ]; then "$perideal" --threads "$threads" "$name.prm"; \
-    else mpirun --oversubscribe -np "$ranks" "$perideal" --threads "$threads" "$name.prm"; fi ) > "$work/$name.log" 2>&1 \
+    else mpirun --oversubscribe --bind-to none -np "$ranks" "$perideal" --threads "$threads" "$name.prm" < /dev/null; fi ) > "$work/$name.log" 2>&1 \
     || { tail -20 "$work/$name.log"; echo "FAILED: $name"; exit 1; }
   cp "$work/$name/energies.csv" "$out/$name.csv"
   nodes=$(sed -n 's/.*explicit dynamics: \([0-9]*\) nodes.*/\1/p' "$work/$name.log")
