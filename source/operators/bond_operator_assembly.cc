@@ -53,11 +53,11 @@ namespace PeriDEAL
             for (unsigned int k = 0; k < stencil.g.size(); ++k)
               visit(k, 1.);
           else
-            for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+            for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
               visit(list_stencil_index[b], list_theta_scale[i]);
         }
       else
-        for (std::size_t b = list_first[i]; b < list_first[i + 1]; ++b)
+        for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
           {
             const ListBond &bond = list_bonds[b];
             f(std::size_t(bond.neighbor_slot),
