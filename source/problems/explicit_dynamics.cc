@@ -911,6 +911,14 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    double
+    ExplicitDynamics<dim>::estimated_bytes_per_node(const double coupled) const
+    {
+      return (dim == 3 ? 2048 : 1024) + 8 * coupled;
+    }
+
+
     template class ExplicitDynamics<2>;
     template class ExplicitDynamics<3>;
   } // namespace Problems

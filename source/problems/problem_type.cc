@@ -18,6 +18,22 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    double
+    ProblemType<dim>::estimated_bytes_per_node(const double) const
+    {
+      return -1;
+    }
+
+
+    template <int dim>
+    bool
+    ProblemType<dim>::uses_linear_solver() const
+    {
+      return true;
+    }
+
+
     template class ProblemType<2>;
     template class ProblemType<3>;
   } // namespace Problems

@@ -475,8 +475,12 @@ namespace PeriDEAL
                                         M_PI * reach * reach;
       // (2D: 1 KB and 1.5 KB; the 2000^2 run took 9.5 GB with local
       // elasticity.)
-      double per_node = dim == 3 ? 2048 : 1024;
-      if (linear_solver.is_matrix_free())
+      double       per_node = dim == 3 ? 2048 : 1024;
+      const double own      = problem->estimated_bytes_per_node(
+        dim == 3 ? 4. / 3. * M_PI * m * m * m : M_PI * m * m);
+      if (own >= 0)
+        per_node = own;
+      else if (linear_solver.is_matrix_free())
         {
           if (linear_solver.preconditioner_name() == "local elasticity")
             per_node += dim == 3 ? 6144 : 1536;
@@ -523,7 +527,7 @@ namespace PeriDEAL
             format_number(needed / 1073741824.) + " GB, but only " +
             format_number(available / 1073741824.) +
             " GB are available; use fewer cells" +
-            (linear_solver.is_matrix_free() ?
+            (linear_solver.is_matrix_free() || !problem->uses_linear_solver() ?
                std::string(", or more machines") :
                std::string(", 'Linear solver/Operator = matrix-free' (about "
                            "2 KB per node), or more machines"))));
@@ -767,9 +771,13 @@ namespace PeriDEAL
               }
         throw_on_any_rank(error, communicator);
       }
+      // The linear solver only where the problem type solves with it.
       pcout << "PeriDEAL " << problem_name << " " << dim << "D: model '"
-            << model_name << "', partial volumes '" << algorithm_name
-            << "', solver '" << linear_solver.method() << "'" << std::endl;
+            << model_name << "', partial volumes '" << algorithm_name << "'"
+            << (problem->uses_linear_solver() ?
+                  ", solver '" + linear_solver.method() + "'" :
+                  std::string())
+            << std::endl;
       make_mesh();
       setup_nodes();
       problem->run(*this);

@@ -54,6 +54,20 @@ namespace PeriDEAL
       virtual void
       run(Simulator<dim> &simulator) = 0;
 
+      /**
+       * Estimated peak memory per node of a run of this problem type, for
+       * the check before the mesh is built, given @p coupled, the number of
+       * nodes within one horizon of a node. A negative value (the default)
+       * means: the linear solve's estimate of the simulator (matrix-free or
+       * assembled, with its preconditioner).
+       */
+      virtual double
+      estimated_bytes_per_node(const double coupled) const;
+
+      /// Whether runs solve with the simulator's 'Linear solver'.
+      virtual bool
+      uses_linear_solver() const;
+
       static std::string
       family_name();
     };
