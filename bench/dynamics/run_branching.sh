@@ -11,6 +11,7 @@
 # and branching.png (plot_branching.py).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/log_fields.sh"
 build=$(cd "${1:-build}" && pwd)
 quick=${2:-}
 perideal="$build/bin/perideal"
@@ -44,10 +45,10 @@ echo "$cases" | while read -r delta m traction; do
   ( cd "$work" && "$perideal" --threads 2 "$name.prm" ) > "$work/$name.log" 2>&1 \
     || { tail -20 "$work/$name.log"; echo "FAILED: $name"; exit 1; }
   cp "$work/$name/energies.csv" "$out/$name.csv"
-  nodes=$(sed -n 's/.*explicit dynamics: \([0-9]*\) nodes.*/\1/p' "$work/$name.log")
-  steps=$(sed -n 's/.*time step .* (\([0-9]*\) steps.*/\1/p' "$work/$name.log")
-  wall=$(sed -n 's/^total wall time \([0-9.e+-]*\) s.*/\1/p' "$work/$name.log")
-  mem=$(sed -n 's/.*peak memory (all processes) \([0-9.e+-]*\) MB.*/\1/p' "$work/$name.log")
+  nodes=$(log_field "$work/$name.log" nodes)
+  steps=$(log_field "$work/$name.log" steps)
+  wall=$(log_field "$work/$name.log" wall)
+  mem=$(log_field "$work/$name.log" memory)
   echo "$name,$delta,$m,$traction,$nodes,$steps,$wall,$mem" >> "$summary"
   echo "$name: $nodes nodes, $steps steps, $wall s"
 done

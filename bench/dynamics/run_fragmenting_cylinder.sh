@@ -15,6 +15,7 @@
 # Writes results/dynamics/fragmenting_cylinder.csv (and energies_<case>.csv).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/log_fields.sh"
 build=$(cd "${1:-build}" && pwd)
 quick=${2:-}
 perideal="$build/bin/perideal"
@@ -43,13 +44,13 @@ echo "$cases" | while read -r h horizon end every ranks threads; do
   ( cd "$work" && mpirun --oversubscribe --bind-to none -np "$ranks" "$perideal" --threads "$threads" "$name.prm" < /dev/null ) \
     > "$work/$name.log" 2>&1 || { tail -20 "$work/$name.log"; echo "FAILED: $name"; exit 1; }
   log="$work/$name.log"
-  nodes=$(sed -n 's/.*explicit dynamics: \([0-9]*\) nodes.*/\1/p' "$log")
-  bonds=$(sed -n 's/.*bonds: \([0-9]*\) .*/\1/p' "$log")
-  visits=$(sed -n 's/.* \([0-9]*\) bond visits per step.*/\1/p' "$log")
-  steps=$(sed -n 's/.*time step .* (\([0-9]*\) steps.*/\1/p' "$log")
-  loop=$(sed -n 's/^| time steps *| *1 | *\([0-9.e+-]*\)s.*/\1/p' "$log")
-  wall=$(sed -n 's/^total wall time \([0-9.e+-]*\) s.*/\1/p' "$log")
-  mem=$(sed -n 's/.*peak memory (all processes) \([0-9.e+-]*\) MB.*/\1/p' "$log")
+  nodes=$(log_field "$log" nodes)
+  bonds=$(log_field "$log" bonds)
+  visits=$(log_field "$log" visits)
+  steps=$(log_field "$log" steps)
+  loop=$(log_field "$log" loop)
+  wall=$(log_field "$log" wall)
+  mem=$(log_field "$log" memory)
   broken=$(tail -1 "$work/$name/energies.csv" | cut -d, -f7)
   cp "$work/$name/energies.csv" "$out/energies_$name.csv"
   awk -v h=$h -v d=$horizon -v n=$nodes -v b=$bonds -v r=$ranks -v t=$threads -v s=$steps \

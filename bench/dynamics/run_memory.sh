@@ -10,6 +10,7 @@
 # Usage: bench/dynamics/run_memory.sh [BUILD_DIR] [BUDGET_GB] [SIZES...]
 # Writes results/dynamics/memory.csv.
 set -eu
+. "$(cd "$(dirname "$0")" && pwd)/log_fields.sh"
 build=$(cd "${1:-build}" && pwd)
 budget=${2:-16}
 shift 2 || true
@@ -57,12 +58,12 @@ end
 PRM
   ( cd "$work" && "$perideal" --threads 2 cube.prm ) > "$work/log" 2>&1 || { tail "$work/log"; exit 1; }
   local nodes bonds steps loop total mem
-  nodes=$(sed -n 's/.*explicit dynamics: \([0-9]*\) nodes.*/\1/p' "$work/log")
-  bonds=$(sed -n 's/.*bonds: \([0-9]*\) .*/\1/p' "$work/log")
-  steps=$(sed -n 's/.*time step .* (\([0-9]*\) steps.*/\1/p' "$work/log")
-  loop=$(sed -n 's/^| time steps *| *1 | *\([0-9.e+-]*\)s.*/\1/p' "$work/log")
-  total=$(sed -n 's/^total wall time \([0-9.e+-]*\) s.*/\1/p' "$work/log")
-  mem=$(sed -n 's/.*peak memory (all processes) \([0-9.e+-]*\) MB.*/\1/p' "$work/log")
+  nodes=$(log_field "$work/log" nodes)
+  bonds=$(log_field "$work/log" bonds)
+  steps=$(log_field "$work/log" steps)
+  loop=$(log_field "$work/log" loop)
+  total=$(log_field "$work/log" wall)
+  mem=$(log_field "$work/log" memory)
   awk -v N=$N -v n=$nodes -v b=$bonds -v s=$steps -v l=$loop -v t=$total -v m=$mem 'BEGIN {
     printf "%d,%d,%d,%d,%.4g,%.4g,%.6g,%.4g,%.4g\n", N, n, b, s, t - l, l / s, m, m * 1024 / n, m * 1048576 / b }' | tee -a "$csv"
 }

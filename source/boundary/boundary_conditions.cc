@@ -329,22 +329,19 @@ namespace PeriDEAL
       std::vector<unsigned int> nodes_of_id;
       const auto                layer =
         BoundaryLayers<dim>(dof_handler.get_triangulation(), dirichlet_ids)
-          .layer_of_nodes(nodes, thickness, &nodes_of_id, comm);
-      std::vector<unsigned int> nodes_of_box(dirichlet_boxes.size(), 0);
-      Vector<double>            g(dim);
-      std::string               non_finite;
+          .layer_of_nodes(nodes, thickness, &nodes_of_id);
+      const auto in_box =
+        Discretization::nodes_in_boxes(nodes,
+                                       dirichlet_boxes,
+                                       "Boundary conditions/Dirichlet boxes",
+                                       dirichlet_boxes_text,
+                                       "prescribes nothing");
+      Vector<double> g(dim);
+      std::string    non_finite;
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
-          const auto &node   = nodes[i];
-          bool        inside = layer[i] != numbers::invalid_unsigned_int;
-          for (unsigned int b = 0; b < dirichlet_boxes.size(); ++b)
-            if (dirichlet_boxes[b].point_inside(node.location))
-              {
-                inside = true;
-                if (i < nodes.n_owned())
-                  ++nodes_of_box[b];
-              }
-          if (!inside)
+          const auto &node = nodes[i];
+          if (layer[i] == numbers::invalid_unsigned_int && !in_box[i])
             continue;
           dirichlet_displacement->vector_value(node.location, g);
           for (unsigned int c = 0; c < dim; ++c)
@@ -378,17 +375,6 @@ namespace PeriDEAL
                             " thick) holds no node centre, so it prescribes "
                             "nothing; use a layer of at least half a cell (a "
                             "thickness above h / (2 horizon))"));
-      if (!dirichlet_boxes.empty())
-        Utilities::MPI::sum(nodes_of_box, comm, nodes_of_box);
-      for (unsigned int b = 0; b < dirichlet_boxes.size(); ++b)
-        AssertThrow(nodes_of_box[b] > 0,
-                    ExcInvalidInput("Boundary conditions/Dirichlet boxes",
-                                    dirichlet_boxes_text,
-                                    "box " + std::to_string(b + 1) +
-                                      " holds no node centre, so it "
-                                      "prescribes nothing; enlarge it to "
-                                      "hold the nodes (cell centres) to "
-                                      "prescribe"));
       constraints.close();
 
       const unsigned int n_free =

@@ -12,30 +12,12 @@ namespace PeriDEAL
 {
   namespace Boundary
   {
-    namespace
-    {
-      template <int dim>
-      double
-      distance_squared(const BoundingBox<dim> &box, const Point<dim> &p)
-      {
-        double d2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double below = box.lower_bound(d) - p[d];
-            const double above = p[d] - box.upper_bound(d);
-            const double gap   = std::max(0., std::max(below, above));
-            d2 += gap * gap;
-          }
-        return d2;
-      }
-    } // namespace
-
-
     template <int dim>
     BoundaryLayers<dim>::BoundaryLayers(
       const Triangulation<dim>              &triangulation,
       const std::vector<types::boundary_id> &ids)
-      : faces(ids.size())
+      : comm(triangulation.get_communicator())
+      , faces(ids.size())
     {
       std::vector<std::vector<BoundingBox<dim>>> local(ids.size());
       for (const auto &cell : triangulation.active_cell_iterators())
@@ -54,7 +36,6 @@ namespace PeriDEAL
                   vertices.push_back(cell->face(f)->vertex(v));
                 local[k].emplace_back(vertices);
               }
-      const MPI_Comm comm = triangulation.get_communicator();
       for (unsigned int k = 0; k < ids.size(); ++k)
         for (const auto &part : Utilities::MPI::all_gather(comm, local[k]))
           faces[k].insert(faces[k].end(), part.begin(), part.end());
@@ -66,8 +47,7 @@ namespace PeriDEAL
     BoundaryLayers<dim>::layer_of_nodes(
       const Discretization::NodeSet<dim> &nodes,
       const double                        thickness,
-      std::vector<unsigned int>          *n_owned_per_id,
-      const MPI_Comm                      comm) const
+      std::vector<unsigned int>          *n_owned_per_id) const
     {
       std::vector<decltype(pack_rtree(faces[0]))> trees;
       for (const auto &f : faces)
@@ -79,8 +59,9 @@ namespace PeriDEAL
       std::vector<BoundingBox<dim>> candidates;
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
-          const auto      &x = nodes[i].location;
-          BoundingBox<dim> search(std::make_pair(x, x));
+          const auto            &x = nodes[i].location;
+          const BoundingBox<dim> point(std::make_pair(x, x));
+          BoundingBox<dim>       search = point;
           search.extend(thickness);
           for (unsigned int k = 0; k < trees.size(); ++k)
             {
@@ -88,7 +69,8 @@ namespace PeriDEAL
               trees[k].query(boost::geometry::index::intersects(search),
                              std::back_inserter(candidates));
               for (const auto &face : candidates)
-                if (distance_squared(face, x) < limit * limit)
+                if (Discretization::box_distance_squared(face, point) <
+                    limit * limit)
                   {
                     if (layer[i] == numbers::invalid_unsigned_int)
                       layer[i] = k;

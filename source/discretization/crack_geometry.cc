@@ -1,3 +1,4 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
 #include <perideal/base/exceptions.h>
@@ -291,6 +292,39 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    std::vector<bool>
+    nodes_in_boxes(const NodeSet<dim>                  &nodes,
+                   const std::vector<BoundingBox<dim>> &boxes,
+                   const std::string                   &entry,
+                   const std::string                   &text,
+                   const std::string                   &purpose)
+    {
+      std::vector<bool>         inside(nodes.size(), false);
+      std::vector<unsigned int> count(boxes.size(), 0);
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        for (unsigned int b = 0; b < boxes.size(); ++b)
+          if (boxes[b].point_inside(nodes[i].location))
+            {
+              inside[i] = true;
+              if (i < nodes.n_owned())
+                ++count[b];
+            }
+      if (!boxes.empty())
+        Utilities::MPI::sum(count, nodes.get_communicator(), count);
+      for (unsigned int b = 0; b < boxes.size(); ++b)
+        AssertThrow(count[b] > 0,
+                    ExcInvalidInput(entry,
+                                    text,
+                                    "box " + std::to_string(b + 1) +
+                                      " holds no node centre, so it " +
+                                      purpose +
+                                      "; enlarge it or move it onto the "
+                                      "body"));
+      return inside;
+    }
+
+
     template class PreCracks<2>;
     template class PreCracks<3>;
     template std::vector<BoundingBox<2>>
@@ -301,5 +335,17 @@ namespace PeriDEAL
     parse_points<2>(const std::string &, const std::string &);
     template std::vector<Point<3>>
     parse_points<3>(const std::string &, const std::string &);
+    template std::vector<bool>
+    nodes_in_boxes<2>(const NodeSet<2> &,
+                      const std::vector<BoundingBox<2>> &,
+                      const std::string &,
+                      const std::string &,
+                      const std::string &);
+    template std::vector<bool>
+    nodes_in_boxes<3>(const NodeSet<3> &,
+                      const std::vector<BoundingBox<3>> &,
+                      const std::string &,
+                      const std::string &,
+                      const std::string &);
   } // namespace Discretization
 } // namespace PeriDEAL

@@ -18,25 +18,20 @@ namespace PeriDEAL
 {
   namespace Discretization
   {
-    namespace
+    template <int dim>
+    double
+    box_distance_squared(const BoundingBox<dim> &a, const BoundingBox<dim> &b)
     {
-      // Squared Euclidean distance between two boxes (0 if they overlap).
-      template <int dim>
-      double
-      box_distance_squared(const BoundingBox<dim> &a, const BoundingBox<dim> &b)
-      {
-        double d2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double gap = std::max({0.,
-                                         a.lower_bound(d) - b.upper_bound(d),
-                                         b.lower_bound(d) - a.upper_bound(d)});
-            d2 += gap * gap;
-          }
-        return d2;
-      }
-
-    } // namespace
+      double d2 = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double gap = std::max({0.,
+                                       a.lower_bound(d) - b.upper_bound(d),
+                                       b.lower_bound(d) - a.upper_bound(d)});
+          d2 += gap * gap;
+        }
+      return d2;
+    }
 
 
     template <int dim>
@@ -271,5 +266,9 @@ namespace PeriDEAL
 
     template class NodeSet<2>;
     template class NodeSet<3>;
+    template double
+    box_distance_squared<2>(const BoundingBox<2> &, const BoundingBox<2> &);
+    template double
+    box_distance_squared<3>(const BoundingBox<3> &, const BoundingBox<3> &);
   } // namespace Discretization
 } // namespace PeriDEAL

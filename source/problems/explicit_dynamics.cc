@@ -362,27 +362,17 @@ namespace PeriDEAL
 
       // Failure: the model's critical stretch, none in the no-fail boxes
       // and layers (each of which must hold a node).
-      const double              s0 = model.critical_stretch(horizon);
-      std::vector<double>       critical(nodes.size(), s0);
-      std::vector<unsigned int> nodes_in_box(no_fail_boxes.size(), 0);
+      const double        s0 = model.critical_stretch(horizon);
+      std::vector<double> critical(nodes.size(), s0);
+      const auto          in_no_fail_box =
+        Discretization::nodes_in_boxes(nodes,
+                                       no_fail_boxes,
+                                       "explicit dynamics/No-fail boxes",
+                                       no_fail_text,
+                                       "keeps no bond from failing");
       for (unsigned int i = 0; i < nodes.size(); ++i)
-        for (unsigned int b = 0; b < no_fail_boxes.size(); ++b)
-          if (no_fail_boxes[b].point_inside(nodes[i].location))
-            {
-              critical[i] = std::numeric_limits<double>::infinity();
-              if (i < nodes.n_owned())
-                ++nodes_in_box[b];
-            }
-      if (!no_fail_boxes.empty())
-        Utilities::MPI::sum(nodes_in_box, comm, nodes_in_box);
-      for (unsigned int b = 0; b < no_fail_boxes.size(); ++b)
-        AssertThrow(nodes_in_box[b] > 0,
-                    ExcInvalidInput("explicit dynamics/No-fail boxes",
-                                    no_fail_text,
-                                    "box " + std::to_string(b + 1) +
-                                      " holds no node centre, so it keeps "
-                                      "no bond from failing; enlarge or "
-                                      "move it onto the body"));
+        if (in_no_fail_box[i])
+          critical[i] = std::numeric_limits<double>::infinity();
       if (!no_fail_ids.empty())
         {
           const auto mesh_ids =
@@ -396,13 +386,11 @@ namespace PeriDEAL
                                         "boundary id " + std::to_string(id) +
                                           " does not occur in the mesh"));
           std::vector<unsigned int> n_in_layer;
-          const auto                layer = Boundary::BoundaryLayers<dim>(
-                               simulator.get_dof_handler().get_triangulation(),
-                               no_fail_ids)
-                               .layer_of_nodes(nodes,
-                                               no_fail_thickness * horizon,
-                                               &n_in_layer,
-                                               comm);
+          const auto                layer =
+            Boundary::BoundaryLayers<dim>(
+              simulator.get_dof_handler().get_triangulation(),
+              no_fail_ids)
+              .layer_of_nodes(nodes, no_fail_thickness * horizon, &n_in_layer);
           for (unsigned int i = 0; i < nodes.size(); ++i)
             if (layer[i] != numbers::invalid_unsigned_int)
               critical[i] = std::numeric_limits<double>::infinity();

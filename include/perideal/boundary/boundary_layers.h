@@ -47,15 +47,17 @@ namespace PeriDEAL
        *
        * @p n_owned_per_id, if given, receives the number of owned nodes in
        * the layer of each id (a node near two faces counts for both),
-       * summed over all processes: the call is then collective.
+       * summed over the triangulation's processes: the call is then
+       * collective.
        */
       std::vector<unsigned int>
       layer_of_nodes(const Discretization::NodeSet<dim> &nodes,
                      const double                        thickness,
-                     std::vector<unsigned int> *n_owned_per_id = nullptr,
-                     const MPI_Comm             comm = MPI_COMM_WORLD) const;
+                     std::vector<unsigned int> *n_owned_per_id = nullptr) const;
 
     private:
+      /// The triangulation's communicator.
+      MPI_Comm                                   comm;
       std::vector<std::vector<BoundingBox<dim>>> faces;
     };
   } // namespace Boundary

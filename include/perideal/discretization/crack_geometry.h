@@ -81,6 +81,20 @@ namespace PeriDEAL
     std::vector<BoundingBox<dim>>
     parse_boxes(const std::string &text, const std::string &entry);
 
+    /**
+     * Which nodes (owned and ghost) of @p nodes lie in one of @p boxes.
+     * Every box must hold the centre of an owned node of some process;
+     * otherwise all processes throw an error naming @p entry, its value
+     * @p text and @p purpose ("prescribes nothing", say). Collective.
+     */
+    template <int dim>
+    std::vector<bool>
+    nodes_in_boxes(const NodeSet<dim>                  &nodes,
+                   const std::vector<BoundingBox<dim>> &boxes,
+                   const std::string                   &entry,
+                   const std::string                   &text,
+                   const std::string                   &purpose);
+
     /// Points given as "x, y[, z]" separated by ';'.
     template <int dim>
     std::vector<Point<dim>>

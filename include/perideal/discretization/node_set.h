@@ -67,6 +67,12 @@ namespace PeriDEAL
     BoundingBox<dim>
     cell_box(const CellAccessor<dim> &cell);
 
+    /// Squared Euclidean distance between two boxes (0 if they overlap; a
+    /// point is a box with equal corners).
+    template <int dim>
+    double
+    box_distance_squared(const BoundingBox<dim> &a, const BoundingBox<dim> &b);
+
     /**
      * The PD nodes a process works with: those of its locally owned cells,
      * followed by every off-process node within a given coupling range of
