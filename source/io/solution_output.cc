@@ -69,6 +69,36 @@ namespace PeriDEAL
       const unsigned int                   index,
       const std::vector<NodeVector>       &vectors) const
     {
+      return write_record(dof_handler,
+                          nodes,
+                          &displacement,
+                          fields,
+                          index,
+                          vectors);
+    }
+
+
+    template <int dim>
+    std::string
+    SolutionOutput<dim>::write(const DoFHandler<dim>              &dof_handler,
+                               const Discretization::NodeSet<dim> &nodes,
+                               const std::vector<NodeField>       &fields,
+                               const unsigned int                  index) const
+    {
+      return write_record(dof_handler, nodes, nullptr, fields, index, {});
+    }
+
+
+    template <int dim>
+    std::string
+    SolutionOutput<dim>::write_record(
+      const DoFHandler<dim>               &dof_handler,
+      const Discretization::NodeSet<dim>  &nodes,
+      const TrilinosWrappers::MPI::Vector *displacement,
+      const std::vector<NodeField>        &fields,
+      const unsigned int                   index,
+      const std::vector<NodeVector>       &vectors) const
+    {
       if (!write_vtu)
         return "";
       const MPI_Comm     comm    = dof_handler.get_communicator();
@@ -110,10 +140,11 @@ namespace PeriDEAL
         interpretation(
           dim,
           DataComponentInterpretation::component_is_part_of_vector);
-      data_out.add_data_vector(displacement,
-                               names,
-                               DataOut<dim>::type_dof_data,
-                               interpretation);
+      if (displacement != nullptr)
+        data_out.add_data_vector(*displacement,
+                                 names,
+                                 DataOut<dim>::type_dof_data,
+                                 interpretation);
       for (const auto &vector : vectors)
         data_out.add_data_vector(*vector.values,
                                  std::vector<std::string>(dim, vector.name),

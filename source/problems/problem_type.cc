@@ -1,3 +1,4 @@
+#include <perideal/models/model.h>
 #include <perideal/problems/problem_type.h>
 
 namespace PeriDEAL
@@ -31,6 +32,23 @@ namespace PeriDEAL
     ProblemType<dim>::uses_linear_solver() const
     {
       return true;
+    }
+
+
+    template <int dim>
+    bool
+    ProblemType<dim>::uses_material_model() const
+    {
+      return true;
+    }
+
+
+    template <int dim>
+    bool
+    ProblemType<dim>::couples_two_horizons(
+      const Models::Model<dim> &model) const
+    {
+      return model.is_state_based();
     }
 
 

@@ -470,7 +470,7 @@ namespace PeriDEAL
             std::max(1e-300,
                      (upper_corner[0] - lower_corner[0]) / subdivisions[0]);
       // Calibrated on the 28^3 LPS case (110 KB per node assembled, m = 3).
-      const double reach   = model->is_state_based() ? 2 * m : m;
+      const double reach   = problem->couples_two_horizons(*model) ? 2 * m : m;
       const double coupled = dim == 3 ? 4. / 3. * M_PI * reach * reach * reach :
                                         M_PI * reach * reach;
       // (2D: 1 KB and 1.5 KB; the 2000^2 run took 9.5 GB with local
@@ -668,8 +668,9 @@ namespace PeriDEAL
       diameter = Utilities::MPI::max(diameter, communicator);
       // State-based forces of an owned node need the dilatations of its
       // neighbours, hence their neighbours: two horizons.
-      const double coupling_range =
-        model->is_state_based() ? 2 * (horizon + diameter) : horizon + diameter;
+      const double coupling_range = problem->couples_two_horizons(*model) ?
+                                      2 * (horizon + diameter) :
+                                      horizon + diameter;
       nodes.reinit(dof_handler, coupling_range);
       summary.n_nodes = triangulation.n_global_active_cells();
     }
@@ -684,7 +685,7 @@ namespace PeriDEAL
         neighbor_lists.reinit(nodes,
                               horizon,
                               *algorithm,
-                              model->is_state_based(),
+                              problem->couples_two_horizons(*model),
                               store_full_lists);
       }
       summary.n_bonds =
@@ -772,8 +773,11 @@ namespace PeriDEAL
         throw_on_any_rank(error, communicator);
       }
       // The linear solver only where the problem type solves with it.
-      pcout << "PeriDEAL " << problem_name << " " << dim << "D: model '"
-            << model_name << "', partial volumes '" << algorithm_name << "'"
+      pcout << "PeriDEAL " << problem_name << " " << dim << "D: "
+            << (problem->uses_material_model() ?
+                  "model '" + model_name + "', " :
+                  std::string())
+            << "partial volumes '" << algorithm_name << "'"
             << (problem->uses_linear_solver() ?
                   ", solver '" + linear_solver.method() + "'" :
                   std::string())

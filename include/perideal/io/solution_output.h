@@ -72,6 +72,17 @@ namespace PeriDEAL
             const std::vector<NodeVector>       &vectors = {}) const;
 
       /**
+       * Write the cell fields @p fields alone (no displacement: scalar
+       * problems such as diffusion), as record @p index; otherwise as
+       * above.
+       */
+      std::string
+      write(const DoFHandler<dim>              &dof_handler,
+            const Discretization::NodeSet<dim> &nodes,
+            const std::vector<NodeField>       &fields,
+            const unsigned int                  index) const;
+
+      /**
        * Write <base name>.pvd, the time series of the given (time, record)
        * pairs that ParaView opens as an animation, on rank 0 under a
        * temporary name (collective). Returns its name, or "" when output is
@@ -93,6 +104,15 @@ namespace PeriDEAL
       }
 
     private:
+      /// write() with an optional displacement.
+      std::string
+      write_record(const DoFHandler<dim>               &dof_handler,
+                   const Discretization::NodeSet<dim>  &nodes,
+                   const TrilinosWrappers::MPI::Vector *displacement,
+                   const std::vector<NodeField>        &fields,
+                   const unsigned int                   index,
+                   const std::vector<NodeVector>       &vectors) const;
+
       bool        write_vtu = true;
       std::string output_directory;
       std::string base_name;

@@ -12,6 +12,12 @@ namespace PeriDEAL
   /**
    * The simulator and the problem types it runs.
    */
+  namespace Models
+  {
+    template <int dim>
+    class Model;
+  }
+
   namespace Problems
   {
     using namespace dealii;
@@ -67,6 +73,20 @@ namespace PeriDEAL
       /// Whether runs solve with the simulator's 'Linear solver'.
       virtual bool
       uses_linear_solver() const;
+
+      /// Whether runs use the simulator's 'Material model' (elasticity).
+      virtual bool
+      uses_material_model() const;
+
+      /**
+       * Whether nodes couple over two horizons (state-based forces need the
+       * dilatations of the neighbours): the node set then holds the
+       * off-process nodes within two horizons and neighbour lists of the
+       * off-process neighbours are built. Default: whether the material
+       * model @p model is state-based.
+       */
+      virtual bool
+      couples_two_horizons(const Models::Model<dim> &model) const;
 
       static std::string
       family_name();

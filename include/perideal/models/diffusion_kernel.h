@@ -1,0 +1,118 @@
+#ifndef perideal_models_diffusion_kernel_h
+#define perideal_models_diffusion_kernel_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <perideal/models/influence_function.h>
+
+#include <memory>
+#include <string>
+
+namespace PeriDEAL
+{
+  namespace Models
+  {
+    using namespace dealii;
+
+    /**
+     * The bond-based peridynamic diffusion kernel (hybrid-collocation paper,
+     * Eqs. 22-24): the concentration flow density of a bond \f$\xi\f$ is
+     * \f[
+     *   J(\eta, \xi) = \kappa\, \omega(|\xi|/\delta)\,
+     *                  \frac{\eta}{|\xi|^q},\qquad \eta = C(x') - C(x),
+     * \f]
+     * with \f$q \in \{0, 1, 2, 3\}\f$, an influence function \f$\omega\f$
+     * and the micro-diffusivity \f$\kappa\f$ from the classical diffusivity
+     * K by flux matching: for a quadratic field the nonlocal operator equals
+     * \f$K\Delta C\f$ when
+     * \f[
+     *   \kappa = \frac{2 d K}{\int_{B_\delta} \omega\, r^{2-q}\, dV}
+     *          = \frac{2 d K}{S_{d-1}\, \delta^{d+2-q}\, M_{d+1-q}},\qquad
+     *   M_k = \int_0^1 \omega(s) s^k\, ds,
+     * \f]
+     * \f$S_0 = 2, S_1 = 2\pi, S_2 = 4\pi\f$ (derivation and the closed forms
+     * for the constant and conical influence in doc/diffusion.md; 2D, q = 2
+     * gives Eq. 25: \f$4K/(\pi\delta^2)\f$ and \f$12K/(\pi\delta^2)\f$).
+     *
+     * This class is the one place of the kernel: operators take
+     * conductance() per bond.
+     */
+    class DiffusionKernel
+    {
+    public:
+      /// Declare 'Diffusivity', 'Flux exponent' and 'Influence function'
+      /// in the current subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      /**
+       * Read the entries of the current subsection (@p section names it in
+       * error messages) and check them: K > 0, q in {0, 1, 2, 3}.
+       */
+      void
+      parse_parameters(ParameterHandler &prm, const std::string &section);
+
+      /// Set the dimension and the horizon; computes \f$\kappa\f$.
+      void
+      reinit(const unsigned int dim, const double horizon);
+
+      /// The classical diffusivity K.
+      double
+      diffusivity() const
+      {
+        return K;
+      }
+
+      /// The exponent q of \f$|\xi|\f$ in the flow density.
+      unsigned int
+      flux_exponent() const
+      {
+        return q;
+      }
+
+      /// The micro-diffusivity \f$\kappa\f$ (after reinit()).
+      double
+      micro_diffusivity() const
+      {
+        return kappa;
+      }
+
+      /**
+       * \f$\kappa\,\max(\omega(r/\delta), 0)/r^q\f$: the conductance of a
+       * bond of length @p r per unit volume of the neighbour, evaluated at
+       * the neighbour's centre (the one-point rule with partial volumes:
+       * cells cut by the horizon may have their centre beyond it).
+       */
+      double
+      conductance(const double r) const;
+
+      /**
+       * \f$\int_{B_\delta} \omega(|\xi|/\delta)\, |\xi|^{p}\, dV\f$ in
+       * dimension @p dim, in closed form through the influence function's
+       * moments.
+       */
+      static double
+      ball_moment(const unsigned int       dim,
+                  const double             horizon,
+                  const int                p,
+                  const InfluenceFunction &omega);
+
+      /// The name of the influence function.
+      const std::string &
+      influence_name() const
+      {
+        return omega_name;
+      }
+
+    private:
+      double                             K       = 1;
+      unsigned int                       q       = 2;
+      double                             horizon = 0;
+      double                             kappa   = 0;
+      std::string                        omega_name;
+      std::unique_ptr<InfluenceFunction> omega;
+    };
+  } // namespace Models
+} // namespace PeriDEAL
+
+#endif

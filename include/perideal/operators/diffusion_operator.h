@@ -1,0 +1,195 @@
+#ifndef perideal_operators_diffusion_operator_h
+#define perideal_operators_diffusion_operator_h
+
+#include <deal.II/base/aligned_vector.h>
+#include <deal.II/base/partitioner.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <perideal/discretization/bond_state.h>
+#include <perideal/discretization/neighbor_list.h>
+#include <perideal/discretization/node_set.h>
+#include <perideal/models/diffusion_kernel.h>
+
+#include <memory>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    using namespace dealii;
+
+    /**
+     * The discrete nonlocal diffusion operator (hybrid-collocation paper,
+     * Eq. 27), evaluated without a matrix:
+     * \f[
+     *   (LC)_i = \sum_{j\ \mathrm{intact}} \mu_{ij}\,(C_j - C_i),\qquad
+     *   \mu_{ij} = \kappa\,\frac{\omega(|\xi_{ij}|/\delta)}{|\xi_{ij}|^q}\,
+     *              w_{ij},
+     * \f]
+     * with the kernel of Models::DiffusionKernel and the partial volumes
+     * \f$w_{ij}\f$ of the neighbour lists. One scalar per node; the vector
+     * layout numbers node i of the mesh as the global index
+     * dofs[0] / dim of the simulator's DoF handler (one FE_DGQ(0)^dim cell
+     * per node), owned nodes and, as ghosts, every other node of the set.
+     *
+     * The loop has the structure of BondOperator's: values are copied into
+     * scratch indexed by lattice slot on a uniform grid (node index
+     * otherwise); every node with a full, intact stencil is evaluated with
+     * ONE shared stencil (slot offset and conductance per offset),
+     * vectorised over runs of up to 64 consecutive bulk slots; every other
+     * node has a compact list of (slot, conductance). No map, global index,
+     * MPI or allocation in the loop; threads through
+     * parallel::apply_to_subranges; each node's sum in a fixed order, so
+     * any number of threads gives bitwise the same result.
+     */
+    template <int dim>
+    class DiffusionOperator
+    {
+    public:
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+      /**
+       * Build the stencil, the lists and the vector layout. @p lists must
+       * hold the lists of the owned nodes; @p bond_state (may be null: all
+       * intact) must have been built on @p lists and stay alive.
+       */
+      void
+      reinit(const Discretization::NodeSet<dim>      &nodes,
+             const Discretization::NeighborList<dim> &lists,
+             const Models::DiffusionKernel           &kernel,
+             const Discretization::BondState<dim>    *bond_state = nullptr);
+
+      /// Re-sort nodes between stencil and lists after bonds broke.
+      void
+      update_bond_state();
+
+      const std::shared_ptr<const Utilities::MPI::Partitioner> &
+      get_partitioner() const;
+
+      /// Size @p v for this operator (one value per node, ghosted).
+      void
+      initialize_vector(VectorType &v) const;
+
+      /// The index of node @p i of the set in vectors of this layout
+      /// (owned nodes: below locally_owned_size()).
+      unsigned int
+      vector_index(const unsigned int i) const
+      {
+        return node_index[i];
+      }
+
+      /**
+       * \f$(LC)_i\f$ of the owned nodes into @p result, from
+       * @p concentration whose ghost values are up to date. Ghost entries of
+       * @p result are left untouched.
+       */
+      void
+      apply(const VectorType &concentration, VectorType &result) const;
+
+      /// \f$\sum_j \mu_{ij}\f$ over the intact bonds of each owned node
+      /// (minus the diagonal of L).
+      void
+      row_sums(VectorType &sums) const;
+
+      /**
+       * Gershgorin's bound \f$2\max_i\sum_j\mu_{ij}\f$ of the spectral
+       * radius of L. Collective.
+       */
+      double
+      gershgorin_bound() const;
+
+      /**
+       * The spectral radius of L estimated by @p n_iterations steps of the
+       * power method from a fixed start vector. Collective.
+       */
+      double
+      estimate_spectral_radius(const unsigned int n_iterations) const;
+
+      /**
+       * Whether \f$V_i\mu_{ij} = V_j\mu_{ji}\f$ holds by construction (a
+       * uniform lattice: equal volumes, and the partial volume of an
+       * offset equals that of its opposite), so that L is symmetric in
+       * the volume-weighted inner product and conjugate gradients apply.
+       */
+      bool
+      is_symmetric() const
+      {
+        return use_lattice;
+      }
+
+      /// Owned nodes evaluated with the shared stencil.
+      unsigned int
+      n_stencil_nodes() const;
+
+      /// Owned nodes evaluated with their own lists.
+      unsigned int
+      n_list_nodes() const;
+
+      /// Bond visits of one apply() on this process.
+      std::size_t
+      n_bond_visits() const;
+
+      /// Bytes held by the operator on this process (scratch included).
+      std::size_t
+      memory_consumption() const;
+
+      /// Slots per run of the vectorised stencil loop.
+      static constexpr unsigned int chunk_size = 64;
+
+    private:
+      struct Chunk
+      {
+        std::size_t  first_slot;
+        unsigned int length;
+      };
+
+      struct ListBond
+      {
+        unsigned int slot;
+        double       mu;
+      };
+
+      /// Call f(k, j, w) for every bond (intact or not) of node i: bond
+      /// index, neighbour, partial volume.
+      template <typename Function>
+      void
+      for_each_bond(const unsigned int i, const Function &f) const;
+
+      void
+      build_work_lists();
+
+      void
+      copy_in(const VectorType &concentration) const;
+
+      const Discretization::NodeSet<dim>      *nodes       = nullptr;
+      const Discretization::NeighborList<dim> *lists       = nullptr;
+      const Models::DiffusionKernel           *kernel      = nullptr;
+      const Discretization::BondState<dim>    *bond_state  = nullptr;
+      bool                                     use_lattice = false;
+
+      std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
+      std::vector<unsigned int>                          node_index;
+      std::vector<std::size_t>                           slot;
+      std::size_t                                        n_slots = 0;
+
+      // The shared stencil.
+      std::vector<std::ptrdiff_t> stencil_offset;
+      std::vector<double>         stencil_mu;
+      double                      stencil_sum = 0;
+
+      std::vector<Chunk>        chunks;
+      std::vector<unsigned int> list_nodes;
+      std::vector<std::size_t>  list_first; // per list node, size + 1
+      std::vector<ListBond>     list_bonds;
+      std::vector<double>       list_sum;
+      unsigned int              n_owned_stencil = 0;
+      std::size_t               bond_visits     = 0;
+
+      mutable AlignedVector<double> c_slot, r_slot;
+    };
+  } // namespace Operators
+} // namespace PeriDEAL
+
+#endif

@@ -1,0 +1,195 @@
+#ifndef perideal_problems_diffusion_h
+#define perideal_problems_diffusion_h
+
+#include <deal.II/base/parsed_function.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include <perideal/discretization/bond_state.h>
+#include <perideal/models/diffusion_kernel.h>
+#include <perideal/operators/diffusion_operator.h>
+#include <perideal/problems/problem_type.h>
+#include <perideal/problems/simulator.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    /**
+     * Nonlocal diffusion (problem type `diffusion`): the semi-discrete
+     * bond-based PD diffusion equation (hybrid-collocation paper, Eqs. 22
+     * and 27)
+     * \f[
+     *   \dot C_i = (LC)_i + S_i(t),\qquad
+     *   (LC)_i = \sum_j \mu_{ij}(C_j - C_i),
+     * \f]
+     * with the kernel of Models::DiffusionKernel (micro-diffusivity from K
+     * by flux matching) and the exact partial volumes of the simulator,
+     * applied by Operators::DiffusionOperator.
+     *
+     * - **Time stepping.** `explicit`: forward Euler (Eq. 31), the step
+     *   given or the safety factor times the bound \f$2/\lambda_G\f$
+     *   (\f$\lambda_G\f$ Gershgorin's bound of the spectral radius of L); a
+     *   step above the bound is an error unless 'Allow unstable time step'.
+     *   `implicit`: backward Euler or Crank-Nicolson, each step a linear
+     *   solve with \f$A = I - \theta\Delta t L\f$ on the free nodes by CG
+     *   (GMRES off a uniform lattice) without a matrix, preconditioned by
+     *   Jacobi or by the local Laplacian (a cell-centred finite-volume
+     *   Laplacian on the same nodes with algebraic multigrid). `steady
+     *   state`: \f$-LC = S\f$, the limit of long times, one solve.
+     * - **Boundary conditions.** Dirichlet values in volumetric layers
+     *   along listed boundary ids ('Boundary concentration', a function of
+     *   x and t); fluxes through listed boundaries as sources in a layer
+     *   (flux divided by the layer thickness); a source S(x, t).
+     * - **Output.** PVTU with a PVD time series (concentration, error);
+     *   a CSV of time, total amount, extrema and the error against an
+     *   analytical solution (relative l2 norm, paper Eq. 66, over the free
+     *   nodes); a progress line on rank 0.
+     */
+    template <int dim>
+    class Diffusion : public ProblemType<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm) override;
+
+      void
+      check_input(const Simulator<dim> &simulator) const override;
+
+      void
+      run(Simulator<dim> &simulator) override;
+
+      /// Mesh, DoFs, nodes and a few scalar vectors; lists only at
+      /// boundaries of a uniform grid (8 bytes a bond off it).
+      double
+      estimated_bytes_per_node(const double coupled) const override;
+
+      bool
+      uses_linear_solver() const override
+      {
+        return false;
+      }
+
+      /// The kernel is the diffusion subsection's, not a material model.
+      bool
+      uses_material_model() const override
+      {
+        return false;
+      }
+
+      /// Diffusion bonds couple over one horizon.
+      bool
+      couples_two_horizons(const Models::Model<dim> &) const override
+      {
+        return false;
+      }
+
+    private:
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+      void
+      setup(Simulator<dim> &simulator);
+
+      void
+      choose_time_step(Simulator<dim> &simulator);
+
+      /// Values of the Dirichlet nodes at time @p t into @p c.
+      void
+      apply_dirichlet(const double t, VectorType &c) const;
+
+      /// The source S(t) of the owned nodes (volume source and fluxes).
+      void
+      evaluate_source(const double t, VectorType &s) const;
+
+      void
+      explicit_step(Simulator<dim> &simulator);
+
+      /**
+       * Solve \f$(\alpha I - \beta L)\,x = b\f$ on the free nodes, x given at
+       * the Dirichlet nodes (initial guess elsewhere). Returns the
+       * iterations.
+       */
+      unsigned int
+      solve(Simulator<dim>   &simulator,
+            const double      alpha,
+            const double      beta,
+            const VectorType &rhs,
+            VectorType       &x);
+
+      void
+      implicit_step(Simulator<dim> &simulator);
+
+      /// Assemble the local Laplacian preconditioner for alpha, beta.
+      void
+      setup_local_laplacian(Simulator<dim> &simulator,
+                            const double    alpha,
+                            const double    beta);
+
+      void
+      record_history(Simulator<dim> &simulator);
+
+      void
+      write_output(Simulator<dim> &simulator);
+
+      void
+      print_progress_line(Simulator<dim> &simulator);
+
+      /// Stop naming the step and node when a value is not finite.
+      void
+      check_finite(Simulator<dim> &simulator) const;
+
+      // Input.
+      Models::DiffusionKernel         kernel;
+      std::string                     stepping = "explicit";
+      double                          theta    = 1;
+      double                          end_time = 1, given_time_step = 0;
+      double                          safety_factor  = 0.9;
+      bool                            allow_unstable = false;
+      std::string                     preconditioner = "jacobi";
+      double                          tolerance      = 1e-10;
+      unsigned int                    max_iterations = 1000;
+      std::vector<types::boundary_id> dirichlet_ids, flux_ids;
+      std::string dirichlet_ids_text, flux_ids_text, dirichlet_thickness_text,
+        flux_thickness_text;
+      double dirichlet_thickness = 1, flux_thickness = 1;
+      std::unique_ptr<Functions::ParsedFunction<dim>> initial, source,
+        boundary_value, boundary_flux, analytical;
+      bool         with_source = true, with_flux = false, compare = false;
+      unsigned int output_every_steps  = 0;
+      double       output_interval     = 0;
+      unsigned int history_every_steps = 10;
+      std::string  history_file;
+      double       progress_interval_s = 5;
+
+      // State.
+      const Discretization::NodeSet<dim> *nodes = nullptr;
+      Discretization::BondState<dim>      bond_state;
+      Operators::DiffusionOperator<dim>   op;
+      double                              horizon = 0;
+      std::vector<unsigned int>           dirichlet_nodes; // owned
+      std::vector<unsigned int>           flux_nodes;      // owned
+      std::vector<bool>                   is_prescribed;   // per owned index
+      VectorType                          c, lc, s, rhs, row_sum;
+      std::unique_ptr<TrilinosWrappers::SparseMatrix>    laplacian;
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+      double       time = 0, dt = 0, dt_bound = 0, radius_estimate = 0;
+      unsigned int step_number = 0, n_steps = 0;
+      unsigned int last_iterations = 0, total_iterations = 0;
+      double       last_progress = 0, next_output_time = 0, loop_start = 0;
+      std::vector<std::vector<double>>            history;
+      std::vector<std::pair<double, std::string>> records;
+    };
+  } // namespace Problems
+} // namespace PeriDEAL
+
+#endif

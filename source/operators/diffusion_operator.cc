@@ -1,0 +1,405 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+
+#include <perideal/operators/diffusion_operator.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    namespace
+    {
+      // Work items per task of the thread pool: runs of the stencil loop
+      // and nodes of the list loop.
+      constexpr unsigned int chunk_grain = 4;
+      constexpr unsigned int node_grain  = 256;
+    } // namespace
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::reinit(
+      const Discretization::NodeSet<dim>      &nodes_,
+      const Discretization::NeighborList<dim> &lists_,
+      const Models::DiffusionKernel           &kernel_,
+      const Discretization::BondState<dim>    *state_)
+    {
+      nodes                   = &nodes_;
+      lists                   = &lists_;
+      kernel                  = &kernel_;
+      bond_state              = state_;
+      const unsigned int n    = nodes->size();
+      const MPI_Comm     comm = nodes->get_communicator();
+
+      // One value per node: the global index dofs[0] / dim of the
+      // FE_DGQ(0)^dim numbering (the dim DoFs of a cell are consecutive).
+      bool consecutive = true;
+      for (unsigned int i = 0; i < n && consecutive; ++i)
+        {
+          const auto &dofs = (*nodes)[i].dofs;
+          consecutive      = dofs[0] % dim == 0;
+          for (unsigned int c = 1; c < dim; ++c)
+            consecutive = consecutive && dofs[c] == dofs[0] + c;
+        }
+      AssertThrow(Utilities::MPI::min(consecutive ? 1 : 0, comm) == 1,
+                  ExcMessage("DiffusionOperator needs the dim DoFs of a node "
+                             "numbered consecutively from a multiple of dim "
+                             "(FESystem of FE_DGQ(0) without renumbering)."));
+      {
+        const types::global_dof_index n_global =
+          nodes->relevant_dofs().size() / dim;
+        IndexSet owned(n_global), relevant(n_global);
+        std::vector<types::global_dof_index> indices;
+        for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+          indices.push_back((*nodes)[i].dofs[0] / dim);
+        std::sort(indices.begin(), indices.end());
+        owned.add_indices(indices.begin(), indices.end());
+        owned.compress();
+        indices.clear();
+        for (unsigned int i = 0; i < n; ++i)
+          indices.push_back((*nodes)[i].dofs[0] / dim);
+        std::sort(indices.begin(), indices.end());
+        relevant.add_indices(indices.begin(), indices.end());
+        relevant.compress();
+        partitioner =
+          std::make_shared<Utilities::MPI::Partitioner>(owned, relevant, comm);
+      }
+      node_index.resize(n);
+      for (unsigned int i = 0; i < n; ++i)
+        node_index[i] = partitioner->global_to_local((*nodes)[i].dofs[0] / dim);
+
+      // Slots: the lattice box on a uniform grid (unless it is much larger
+      // than the node set), node indices otherwise.
+      const auto &lattice = lists->lattice();
+      use_lattice         = lattice.is_uniform() && !lists->stencil().empty() &&
+                    lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
+      n_slots = use_lattice ? lattice.n_slots() : n;
+      slot.resize(n);
+      for (unsigned int i = 0; i < n; ++i)
+        slot[i] = use_lattice ? lattice.slot(i) : i;
+
+      stencil_offset.clear();
+      stencil_mu.clear();
+      stencil_sum = 0;
+      if (use_lattice)
+        {
+          const double h      = lattice.spacing();
+          const double volume = std::pow(h, dim);
+          for (const auto &o : lists->stencil())
+            {
+              double r2 = 0;
+              for (unsigned int d = 0; d < dim; ++d)
+                r2 += double(o.offset[d]) * o.offset[d];
+              const double mu =
+                kernel->conductance(std::sqrt(r2) * h) * o.beta * volume;
+              stencil_offset.push_back(lattice.slot_offset(o.offset));
+              stencil_mu.push_back(mu);
+              stencil_sum += mu;
+            }
+        }
+      c_slot.resize_fast(n_slots);
+      r_slot.resize_fast(n_slots);
+      std::fill(c_slot.begin(), c_slot.end(), 0.);
+      std::fill(r_slot.begin(), r_slot.end(), 0.);
+      build_work_lists();
+    }
+
+
+    template <int dim>
+    template <typename Function>
+    void
+    DiffusionOperator<dim>::for_each_bond(const unsigned int i,
+                                          const Function    &f) const
+    {
+      if (lists->has_full_stencil(i))
+        {
+          const auto  &lattice = lists->lattice();
+          const double volume  = std::pow(lattice.spacing(), dim);
+          const auto  &x       = lattice.coordinates(i);
+          const auto  &offsets = lists->stencil();
+          for (unsigned int k = 0; k < offsets.size(); ++k)
+            {
+              std::array<std::int64_t, dim> y = x;
+              for (unsigned int d = 0; d < dim; ++d)
+                y[d] += offsets[k].offset[d];
+              f(k,
+                static_cast<unsigned int>(lattice.node_at(y)),
+                offsets[k].beta * volume);
+            }
+        }
+      else
+        {
+          const auto bonds = lists->bonds(i);
+          for (unsigned int k = 0; k < bonds.size(); ++k)
+            f(k, bonds[k].neighbor, bonds[k].weight);
+        }
+    }
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::update_bond_state()
+    {
+      build_work_lists();
+    }
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::build_work_lists()
+    {
+      const unsigned int       n_owned = nodes->n_owned();
+      std::vector<std::size_t> bulk_slots;
+      list_nodes.clear();
+      list_first.assign(1, 0);
+      list_bonds.clear();
+      list_sum.clear();
+      bond_visits = 0;
+      for (unsigned int i = 0; i < n_owned; ++i)
+        {
+          const bool intact =
+            bond_state == nullptr || !bond_state->any_broken(i);
+          if (use_lattice && lists->has_full_stencil(i) && intact)
+            {
+              bulk_slots.push_back(slot[i]);
+              bond_visits += stencil_mu.size();
+              continue;
+            }
+          const Point<dim> &x   = (*nodes)[i].location;
+          double            sum = 0;
+          for_each_bond(
+            i,
+            [&](const unsigned int k, const unsigned int j, const double w) {
+              if (bond_state != nullptr && bond_state->is_broken(i, k))
+                return;
+              const double mu =
+                kernel->conductance(x.distance((*nodes)[j].location)) * w;
+              list_bonds.push_back({static_cast<unsigned int>(slot[j]), mu});
+              sum += mu;
+            });
+          list_nodes.push_back(i);
+          list_first.push_back(list_bonds.size());
+          list_sum.push_back(sum);
+          bond_visits += list_first.back() - list_first[list_first.size() - 2];
+        }
+      n_owned_stencil = bulk_slots.size();
+      std::sort(bulk_slots.begin(), bulk_slots.end());
+      chunks.clear();
+      for (const auto s : bulk_slots)
+        if (!chunks.empty() &&
+            chunks.back().first_slot + chunks.back().length == s &&
+            chunks.back().length < chunk_size)
+          ++chunks.back().length;
+        else
+          chunks.push_back({s, 1});
+    }
+
+
+    template <int dim>
+    const std::shared_ptr<const Utilities::MPI::Partitioner> &
+    DiffusionOperator<dim>::get_partitioner() const
+    {
+      return partitioner;
+    }
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::initialize_vector(VectorType &v) const
+    {
+      v.reinit(partitioner);
+    }
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::copy_in(const VectorType &concentration) const
+    {
+      const double *values = concentration.begin();
+      parallel::apply_to_subranges(
+        0u,
+        static_cast<unsigned int>(nodes->size()),
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
+            c_slot[slot[i]] = values[node_index[i]];
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::apply(const VectorType &concentration,
+                                  VectorType       &result) const
+    {
+      copy_in(concentration);
+      const double     *c         = c_slot.data();
+      const std::size_t n_offsets = stencil_mu.size();
+
+      // The uniform bulk: sum_k mu_k (c_{s+o_k} - c_s), vectorised over a
+      // run of consecutive slots, offsets outside.
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double sum[chunk_size];
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const std::size_t  s0  = chunks[q].first_slot;
+              const unsigned int len = chunks[q].length;
+              const double      *ci  = c + s0;
+              for (unsigned int l = 0; l < len; ++l)
+                sum[l] = 0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const double  mu = stencil_mu[k];
+                  const double *cj = ci + stencil_offset[k];
+#pragma omp simd
+                  for (unsigned int l = 0; l < len; ++l)
+                    sum[l] += mu * (cj[l] - ci[l]);
+                }
+              for (unsigned int l = 0; l < len; ++l)
+                r_slot[s0 + l] = sum[l];
+            }
+        },
+        chunk_grain);
+
+      // Nodes with lists.
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        list_nodes.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const double ci  = c[slot[list_nodes[q]]];
+              double       sum = 0;
+              for (std::size_t b = list_first[q]; b < list_first[q + 1]; ++b)
+                sum += list_bonds[b].mu * (c[list_bonds[b].slot] - ci);
+              r_slot[slot[list_nodes[q]]] = sum;
+            }
+        },
+        node_grain);
+
+      double *out = result.begin();
+      parallel::apply_to_subranges(
+        0u,
+        nodes->n_owned(),
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
+            out[node_index[i]] = r_slot[slot[i]];
+        },
+        node_grain);
+    }
+
+
+    template <int dim>
+    void
+    DiffusionOperator<dim>::row_sums(VectorType &sums) const
+    {
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        sums.local_element(node_index[i]) = stencil_sum;
+      for (std::size_t q = 0; q < list_nodes.size(); ++q)
+        sums.local_element(node_index[list_nodes[q]]) = list_sum[q];
+    }
+
+
+    template <int dim>
+    double
+    DiffusionOperator<dim>::gershgorin_bound() const
+    {
+      double largest = n_owned_stencil > 0 ? stencil_sum : 0.;
+      for (const double s : list_sum)
+        largest = std::max(largest, s);
+      return 2 * Utilities::MPI::max(largest, nodes->get_communicator());
+    }
+
+
+    template <int dim>
+    double
+    DiffusionOperator<dim>::estimate_spectral_radius(
+      const unsigned int n_iterations) const
+    {
+      // Power method on L from a fixed, partition-independent start vector
+      // that excites the shortest waves: (-1)^(sum of lattice indices) on a
+      // lattice, a hash of the global index otherwise.
+      VectorType x, y;
+      initialize_vector(x);
+      initialize_vector(y);
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const auto g = (*nodes)[i].dofs[0] / dim;
+          double     v = 1. + 0.5 * std::sin(1.7 * double(g));
+          if (use_lattice)
+            {
+              std::int64_t parity = 0;
+              for (const auto c : lists->lattice().coordinates(i))
+                parity += c;
+              v *= (parity % 2 == 0 ? 1. : -1.);
+            }
+          x.local_element(node_index[i]) = v;
+        }
+      double lambda = 0;
+      for (unsigned int it = 0; it < n_iterations; ++it)
+        {
+          const double norm = x.l2_norm();
+          if (norm == 0)
+            break;
+          x /= norm;
+          x.update_ghost_values();
+          apply(x, y);
+          lambda = y.l2_norm();
+          x.swap(y);
+          x.zero_out_ghost_values();
+        }
+      return lambda;
+    }
+
+
+    template <int dim>
+    unsigned int
+    DiffusionOperator<dim>::n_stencil_nodes() const
+    {
+      return n_owned_stencil;
+    }
+
+
+    template <int dim>
+    unsigned int
+    DiffusionOperator<dim>::n_list_nodes() const
+    {
+      return list_nodes.size();
+    }
+
+
+    template <int dim>
+    std::size_t
+    DiffusionOperator<dim>::n_bond_visits() const
+    {
+      return bond_visits;
+    }
+
+
+    template <int dim>
+    std::size_t
+    DiffusionOperator<dim>::memory_consumption() const
+    {
+      return sizeof(*this) + node_index.capacity() * sizeof(unsigned int) +
+             slot.capacity() * sizeof(std::size_t) +
+             stencil_offset.capacity() * sizeof(std::ptrdiff_t) +
+             stencil_mu.capacity() * sizeof(double) +
+             chunks.capacity() * sizeof(Chunk) +
+             list_nodes.capacity() * sizeof(unsigned int) +
+             list_first.capacity() * sizeof(std::size_t) +
+             list_bonds.capacity() * sizeof(ListBond) +
+             list_sum.capacity() * sizeof(double) +
+             (c_slot.memory_consumption() + r_slot.memory_consumption());
+    }
+
+
+    template class DiffusionOperator<2>;
+    template class DiffusionOperator<3>;
+  } // namespace Operators
+} // namespace PeriDEAL

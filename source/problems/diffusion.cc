@@ -1,0 +1,961 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <deal.II/lac/diagonal_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <perideal/base/collective_checks.h>
+#include <perideal/base/exceptions.h>
+#include <perideal/boundary/boundary_layers.h>
+#include <perideal/problems/diffusion.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    namespace
+    {
+      std::string
+      to_string(const double x)
+      {
+        std::ostringstream s;
+        s << std::setprecision(6) << x;
+        return s.str();
+      }
+
+      const std::string section = "diffusion";
+
+      std::vector<types::boundary_id>
+      parse_ids(const std::string &text)
+      {
+        std::vector<types::boundary_id> ids;
+        for (const int id :
+             Utilities::string_to_int(Utilities::split_string_list(text)))
+          ids.push_back(static_cast<types::boundary_id>(id));
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        return ids;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      Models::DiffusionKernel::declare_parameters(prm);
+      prm.declare_entry(
+        "Time stepping",
+        "explicit",
+        Patterns::Selection("explicit|implicit|steady state"),
+        "explicit: forward Euler with the step below the stability bound; "
+        "implicit: 'Implicit scheme' with a linear solve per step; steady "
+        "state: -L C = S (source and boundary values at t = 0), one solve.");
+      prm.declare_entry("Implicit scheme",
+                        "backward Euler",
+                        Patterns::Selection("backward Euler|Crank-Nicolson"),
+                        "The implicit scheme: theta = 1 or 1/2.");
+      prm.declare_entry("End time", "1", Patterns::Double(), "> 0.");
+      prm.declare_entry(
+        "Time step",
+        "0",
+        Patterns::Double(),
+        "Time step. 0 (explicit only): 'Safety factor' times the stability "
+        "bound 2 / lambda_G of forward Euler (lambda_G: Gershgorin's bound "
+        "of the spectral radius of the discrete operator). The step is "
+        "shortened so that a whole number of steps reaches 'End time'.");
+      prm.declare_entry("Safety factor",
+                        "0.9",
+                        Patterns::Double(),
+                        "Fraction of the stability bound used when 'Time "
+                        "step = 0'; in (0, 1].");
+      prm.declare_entry("Allow unstable time step",
+                        "false",
+                        Patterns::Bool(),
+                        "Accept an explicit 'Time step' above the stability "
+                        "bound (an error otherwise).");
+      prm.declare_entry("Preconditioner",
+                        "local laplacian",
+                        Patterns::Selection("jacobi|local laplacian"),
+                        "Implicit and steady solves: Jacobi on the exact "
+                        "diagonal, or algebraic multigrid on the local "
+                        "Laplacian (cell-centred finite volumes on the same "
+                        "nodes; uniform grids).");
+      prm.declare_entry("Solver tolerance",
+                        "1e-10",
+                        Patterns::Double(),
+                        "Relative residual of the implicit solves; in (0, "
+                        "1).");
+      prm.declare_entry("Maximum iterations",
+                        "1000",
+                        Patterns::Integer(1),
+                        "Iterations of an implicit solve before it fails.");
+      prm.enter_subsection("Initial concentration");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.enter_subsection("Source");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Dirichlet boundary ids",
+                        "",
+                        Patterns::List(Patterns::Integer(0, 254)),
+                        "Boundaries along which 'Boundary concentration' is "
+                        "prescribed in a layer of 'Dirichlet layer "
+                        "thickness'.");
+      prm.declare_entry("Dirichlet layer thickness",
+                        "1",
+                        Patterns::Double(),
+                        "Thickness of the Dirichlet layers, in horizons.");
+      prm.enter_subsection("Boundary concentration");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Flux boundary ids",
+                        "",
+                        Patterns::List(Patterns::Integer(0, 254)),
+                        "Boundaries through which 'Boundary flux' enters, as "
+                        "a source (flux / thickness) in a layer of 'Flux "
+                        "layer thickness'.");
+      prm.declare_entry("Flux layer thickness",
+                        "1",
+                        Patterns::Double(),
+                        "Thickness of the flux layers, in horizons.");
+      prm.enter_subsection("Boundary flux");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Compare with analytical solution",
+                        "false",
+                        Patterns::Bool(),
+                        "Report the error against 'Analytical "
+                        "concentration' (relative l2 norm over the free "
+                        "nodes and the largest nodal error).");
+      prm.enter_subsection("Analytical concentration");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Output every steps",
+                        "0",
+                        Patterns::Integer(0),
+                        "Write PVTU output every this many steps (and at the "
+                        "first and last step). 0: use 'Output interval'.");
+      prm.declare_entry("Output interval",
+                        "0",
+                        Patterns::Double(0),
+                        "Write PVTU output every this much simulated time; 0 "
+                        "(with 'Output every steps = 0'): first and last "
+                        "step only.");
+      prm.declare_entry("History every steps",
+                        "10",
+                        Patterns::Integer(1),
+                        "A row of the history file (and a progress check) "
+                        "every this many steps.");
+      prm.declare_entry("History file",
+                        "history.csv",
+                        Patterns::FileName(),
+                        "CSV of time, step, total amount, minimum, maximum, "
+                        "solver iterations and errors, in "
+                        "'Output/Directory'. Empty: not written.");
+      prm.declare_entry("Progress interval",
+                        "5",
+                        Patterns::Double(0),
+                        "Print a progress line on rank 0 at most every this "
+                        "many seconds of wall time.");
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      kernel.parse_parameters(prm, section);
+      stepping = prm.get("Time stepping");
+      theta    = prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5;
+      end_time = prm.get_double("End time");
+      AssertThrow(end_time > 0 || stepping == "steady state",
+                  ExcInvalidInput(section + "/End time",
+                                  prm.get("End time"),
+                                  "give a simulated time > 0"));
+      given_time_step = prm.get_double("Time step");
+      AssertThrow(given_time_step >= 0 &&
+                    (given_time_step > 0 || stepping != "implicit"),
+                  ExcInvalidInput(section + "/Time step",
+                                  prm.get("Time step"),
+                                  stepping == "implicit" ?
+                                    "implicit time stepping needs a time "
+                                    "step > 0" :
+                                    "give a step > 0, or 0 for the "
+                                    "stability bound"));
+      safety_factor = prm.get_double("Safety factor");
+      AssertThrow(safety_factor > 0 && safety_factor <= 1,
+                  ExcInvalidInput(section + "/Safety factor",
+                                  prm.get("Safety factor"),
+                                  "give a fraction in (0, 1]"));
+      allow_unstable = prm.get_bool("Allow unstable time step");
+      preconditioner = prm.get("Preconditioner");
+      tolerance      = prm.get_double("Solver tolerance");
+      AssertThrow(tolerance > 0 && tolerance < 1,
+                  ExcInvalidInput(section + "/Solver tolerance",
+                                  prm.get("Solver tolerance"),
+                                  "give a relative tolerance in (0, 1)"));
+      max_iterations = prm.get_integer("Maximum iterations");
+
+      const auto parse_function = [&](const std::string &name, auto &function) {
+        prm.enter_subsection(name);
+        function = std::make_unique<Functions::ParsedFunction<dim>>(1);
+        function->parse_parameters(prm);
+        const std::string expression = prm.get("Function expression");
+        prm.leave_subsection();
+        return expression;
+      };
+      parse_function("Initial concentration", initial);
+      with_source = parse_function("Source", source) != "0";
+      parse_function("Boundary concentration", boundary_value);
+      with_flux = parse_function("Boundary flux", boundary_flux) != "0";
+      parse_function("Analytical concentration", analytical);
+      compare = prm.get_bool("Compare with analytical solution");
+
+      dirichlet_ids_text       = prm.get("Dirichlet boundary ids");
+      flux_ids_text            = prm.get("Flux boundary ids");
+      dirichlet_ids            = parse_ids(dirichlet_ids_text);
+      flux_ids                 = parse_ids(flux_ids_text);
+      dirichlet_thickness_text = prm.get("Dirichlet layer thickness");
+      flux_thickness_text      = prm.get("Flux layer thickness");
+      dirichlet_thickness      = prm.get_double("Dirichlet layer thickness");
+      flux_thickness           = prm.get_double("Flux layer thickness");
+      AssertThrow(dirichlet_thickness > 0,
+                  ExcInvalidInput(section + "/Dirichlet layer thickness",
+                                  dirichlet_thickness_text,
+                                  "give a thickness > 0 (in horizons)"));
+      AssertThrow(flux_thickness > 0,
+                  ExcInvalidInput(section + "/Flux layer thickness",
+                                  flux_thickness_text,
+                                  "give a thickness > 0 (in horizons)"));
+      AssertThrow(stepping != "steady state" || !dirichlet_ids.empty(),
+                  ExcInvalidInput(section + "/Dirichlet boundary ids",
+                                  dirichlet_ids_text,
+                                  "a steady state needs prescribed values "
+                                  "somewhere (otherwise it is not unique): "
+                                  "list at least one boundary id"));
+
+      output_every_steps  = prm.get_integer("Output every steps");
+      output_interval     = prm.get_double("Output interval");
+      history_every_steps = prm.get_integer("History every steps");
+      history_file        = prm.get("History file");
+      progress_interval_s = prm.get_double("Progress interval");
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::check_input(const Simulator<dim> &simulator) const
+    {
+      AssertThrow(simulator.get_boundary_treatment_name() == "none",
+                  ExcInvalidInput("Boundary treatment/Treatment",
+                                  simulator.get_boundary_treatment_name(),
+                                  "the diffusion problem supports the 'none' "
+                                  "treatment only so far"));
+      AssertThrow(simulator.get_node_data_file().empty(),
+                  ExcInvalidInput("Output/Node data file",
+                                  simulator.get_node_data_file(),
+                                  "the node data file is written by the "
+                                  "quasi-static problem only; leave it "
+                                  "empty"));
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::run(Simulator<dim> &simulator)
+    {
+      setup(simulator);
+      {
+        TimerOutput::Scope scope(simulator.get_timer(), "initial state");
+        initial->set_time(0);
+        for (unsigned int i = 0; i < simulator.get_nodes().n_owned(); ++i)
+          c.local_element(op.vector_index(i)) =
+            initial->value(simulator.get_nodes()[i].location);
+        apply_dirichlet(0, c);
+      }
+      if (stepping == "steady state")
+        {
+          TimerOutput::Scope scope(simulator.get_timer(), "steady solve");
+          evaluate_source(0, rhs);
+          if (preconditioner == "local laplacian")
+            setup_local_laplacian(simulator, 0, 1);
+          last_iterations = solve(simulator, 0, 1, rhs, c);
+          total_iterations += last_iterations;
+          check_finite(simulator);
+          record_history(simulator);
+          print_progress_line(simulator);
+          write_output(simulator);
+          return;
+        }
+      choose_time_step(simulator);
+      if (stepping == "implicit" && preconditioner == "local laplacian")
+        setup_local_laplacian(simulator, 1, theta * dt);
+      record_history(simulator);
+      write_output(simulator);
+      TimerOutput::Scope scope(simulator.get_timer(), "time steps");
+      loop_start    = simulator.elapsed();
+      last_progress = loop_start;
+      while (step_number < n_steps)
+        {
+          if (stepping == "explicit")
+            explicit_step(simulator);
+          else
+            implicit_step(simulator);
+          check_finite(simulator);
+          const bool last = step_number == n_steps;
+          if (last || step_number % history_every_steps == 0)
+            {
+              record_history(simulator);
+              if (last ||
+                  simulator.elapsed() - last_progress >= progress_interval_s)
+                print_progress_line(simulator);
+            }
+          const bool by_steps =
+            output_every_steps > 0 && step_number % output_every_steps == 0;
+          const bool by_time =
+            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
+          if (last || by_steps || by_time)
+            {
+              TimerOutput::Scope out(simulator.get_timer(), "output");
+              write_output(simulator);
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::setup(Simulator<dim> &simulator)
+    {
+      simulator.setup_neighbor_lists(false);
+      TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
+      nodes                = &simulator.get_nodes();
+      const auto    &nodes = simulator.get_nodes();
+      const MPI_Comm comm  = simulator.get_communicator();
+      horizon              = simulator.get_horizon();
+      kernel.reinit(dim, horizon);
+      bond_state.reinit(nodes, simulator.get_neighbor_lists());
+      op.reinit(nodes, simulator.get_neighbor_lists(), kernel, &bond_state);
+      for (auto *v : {&c, &lc, &s, &rhs, &row_sum})
+        op.initialize_vector(*v);
+      op.row_sums(row_sum);
+
+      // Layers: Dirichlet values and flux sources, each layer must hold a
+      // node.
+      const auto &tria     = simulator.get_dof_handler().get_triangulation();
+      const auto  mesh_ids = tria.get_boundary_ids();
+      const auto  layers   = [&](const std::vector<types::boundary_id> &ids,
+                              const std::string                     &ids_entry,
+                              const std::string                     &ids_text,
+                              const double                           thickness,
+                              const std::string &thickness_entry,
+                              const std::string &thickness_text) {
+        std::vector<unsigned int> owned;
+        if (ids.empty())
+          return owned;
+        for (const auto id : ids)
+          AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
+                        mesh_ids.end(),
+                      ExcInvalidInput(section + "/" + ids_entry,
+                                      ids_text,
+                                      "boundary id " + std::to_string(id) +
+                                        " does not occur in the mesh"));
+        std::vector<unsigned int> n_in_layer;
+        const auto                layer =
+          Boundary::BoundaryLayers<dim>(tria, ids).layer_of_nodes(nodes,
+                                                                  thickness *
+                                                                    horizon,
+                                                                  &n_in_layer);
+        for (unsigned int k = 0; k < ids.size(); ++k)
+          AssertThrow(n_in_layer[k] > 0,
+                      ExcInvalidInput(section + "/" + thickness_entry,
+                                      thickness_text,
+                                      "the layer of boundary id " +
+                                        std::to_string(ids[k]) +
+                                        " holds no node centre; use a layer "
+                                           "of at least half a cell"));
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          if (layer[i] != numbers::invalid_unsigned_int)
+            owned.push_back(i);
+        return owned;
+      };
+      dirichlet_nodes = layers(dirichlet_ids,
+                               "Dirichlet boundary ids",
+                               dirichlet_ids_text,
+                               dirichlet_thickness,
+                               "Dirichlet layer thickness",
+                               dirichlet_thickness_text);
+      flux_nodes      = layers(flux_ids,
+                          "Flux boundary ids",
+                          flux_ids_text,
+                          flux_thickness,
+                          "Flux layer thickness",
+                          flux_thickness_text);
+      is_prescribed.assign(c.locally_owned_size(), false);
+      for (const auto i : dirichlet_nodes)
+        is_prescribed[op.vector_index(i)] = true;
+
+      const unsigned int n_stencil =
+        Utilities::MPI::sum(op.n_stencil_nodes(), comm);
+      const std::size_t visits = Utilities::MPI::sum(op.n_bond_visits(), comm);
+      simulator.get_pcout()
+        << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+        << simulator.elapsed()
+        << " s] diffusion: " << simulator.get_summary().n_nodes << " nodes ("
+        << n_stencil << " on the shared stencil), " << visits
+        << " bond visits per evaluation, K = " << kernel.diffusivity()
+        << ", q = " << kernel.flux_exponent() << ", " << kernel.influence_name()
+        << " influence, micro-diffusivity " << std::scientific
+        << std::setprecision(6) << kernel.micro_diffusivity()
+        << std::defaultfloat << ", "
+        << Utilities::MPI::sum(dirichlet_nodes.size(), comm)
+        << " Dirichlet nodes, " << Utilities::MPI::sum(flux_nodes.size(), comm)
+        << " flux nodes, " << stepping << ", " << MultithreadInfo::n_threads()
+        << " thread(s) per process" << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::choose_time_step(Simulator<dim> &simulator)
+    {
+      const double bound = op.gershgorin_bound();
+      radius_estimate    = op.estimate_spectral_radius(60);
+      AssertThrow(std::isfinite(bound) && bound > 0,
+                  ExcMessage("The stability bound of the time step is not "
+                             "finite: the operator has no bonds?"));
+      dt_bound = 2 / bound;
+      if (stepping == "explicit" && given_time_step > 0)
+        AssertThrow(given_time_step <= dt_bound || allow_unstable,
+                    ExcInvalidInput(section + "/Time step",
+                                    to_string(given_time_step),
+                                    "forward Euler is stable only up to " +
+                                      to_string(dt_bound) +
+                                      " (2 / Gershgorin's bound of the "
+                                      "operator); give a smaller step, 0 for "
+                                      "the bound, or set 'Allow unstable "
+                                      "time step = true'"));
+      const double target =
+        given_time_step > 0 ? given_time_step : safety_factor * dt_bound;
+      n_steps = static_cast<unsigned int>(std::ceil(end_time / target - 1e-9));
+      n_steps = std::max(n_steps, 1u);
+      dt      = end_time / n_steps;
+      simulator.get_pcout()
+        << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+        << simulator.elapsed() << " s] time step " << std::scientific
+        << std::setprecision(4) << dt << " (" << n_steps
+        << " steps); forward Euler bound " << dt_bound
+        << " (power-method estimate of the limit " << 2 / radius_estimate << ")"
+        << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::apply_dirichlet(const double t, VectorType &x) const
+    {
+      if (dirichlet_nodes.empty())
+        return;
+      boundary_value->set_time(t);
+      for (const auto i : dirichlet_nodes)
+        x.local_element(op.vector_index(i)) =
+          boundary_value->value((*nodes)[i].location);
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::evaluate_source(const double t, VectorType &x) const
+    {
+      x = 0;
+      if (with_source)
+        {
+          source->set_time(t);
+          for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+            x.local_element(op.vector_index(i)) =
+              source->value((*nodes)[i].location);
+        }
+      if (with_flux)
+        {
+          // A flux q through the surface enters as the source q / l spread
+          // over the layer of thickness l (its integral over the layer is
+          // q times the area).
+          boundary_flux->set_time(t);
+          const double inverse = 1. / (flux_thickness * horizon);
+          for (const auto i : flux_nodes)
+            x.local_element(op.vector_index(i)) +=
+              inverse * boundary_flux->value((*nodes)[i].location);
+        }
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::explicit_step(Simulator<dim> &)
+    {
+      // C^{n+1} = C^n + dt (L C^n + S^n) (paper Eq. 31); prescribed values
+      // at t^{n+1}.
+      c.update_ghost_values();
+      op.apply(c, lc);
+      evaluate_source(time, s);
+      c.zero_out_ghost_values();
+      const unsigned int n = c.locally_owned_size();
+      for (unsigned int k = 0; k < n; ++k)
+        if (!is_prescribed[k])
+          c.local_element(k) += dt * (lc.local_element(k) + s.local_element(k));
+      ++step_number;
+      time = step_number == n_steps ? end_time : step_number * dt;
+      apply_dirichlet(time, c);
+    }
+
+
+    namespace
+    {
+      /**
+       * alpha x - beta L x on the free nodes, the identity on the
+       * prescribed ones (whose values do not enter the free rows: they are
+       * lifted to the right-hand side).
+       */
+      template <int dim>
+      struct SystemOperator
+      {
+        using VectorType = LinearAlgebra::distributed::Vector<double>;
+        const Operators::DiffusionOperator<dim> &op;
+        const std::vector<bool>                 &is_prescribed;
+        double                                   alpha, beta;
+        mutable VectorType                       tmp, result;
+
+        void
+        vmult(VectorType &dst, const VectorType &src) const
+        {
+          const unsigned int n = src.locally_owned_size();
+          for (unsigned int k = 0; k < n; ++k)
+            tmp.local_element(k) = is_prescribed[k] ? 0. : src.local_element(k);
+          tmp.update_ghost_values();
+          op.apply(tmp, result);
+          tmp.zero_out_ghost_values();
+          for (unsigned int k = 0; k < n; ++k)
+            dst.local_element(k) =
+              is_prescribed[k] ?
+                src.local_element(k) :
+                alpha * src.local_element(k) - beta * result.local_element(k);
+        }
+      };
+
+
+      /// A preconditioner given by an AMG on a Trilinos matrix, applied to
+      /// deal.II vectors through their owned values.
+      struct AmgPreconditioner
+      {
+        using VectorType = LinearAlgebra::distributed::Vector<double>;
+        const TrilinosWrappers::PreconditionAMG &amg;
+
+        void
+        vmult(VectorType &dst, const VectorType &src) const
+        {
+          amg.vmult(dst, src);
+        }
+      };
+    } // namespace
+
+
+    template <int dim>
+    unsigned int
+    Diffusion<dim>::solve(Simulator<dim>   &simulator,
+                          const double      alpha,
+                          const double      beta,
+                          const VectorType &b,
+                          VectorType       &x)
+    {
+      // Lift the prescribed values: b_free += beta (L g)_free, g the
+      // prescribed values (zero elsewhere).
+      VectorType lifted(b), g;
+      op.initialize_vector(g);
+      const unsigned int n = x.locally_owned_size();
+      for (unsigned int k = 0; k < n; ++k)
+        if (is_prescribed[k])
+          g.local_element(k) = x.local_element(k);
+      g.update_ghost_values();
+      op.apply(g, lc);
+      for (unsigned int k = 0; k < n; ++k)
+        lifted.local_element(k) =
+          is_prescribed[k] ? x.local_element(k) :
+                             b.local_element(k) + beta * lc.local_element(k);
+
+      SystemOperator<dim> system{op, is_prescribed, alpha, beta, {}, {}};
+      op.initialize_vector(system.tmp);
+      op.initialize_vector(system.result);
+      x.zero_out_ghost_values();
+      const double  norm = lifted.l2_norm();
+      SolverControl control(max_iterations, std::max(tolerance * norm, 1e-300));
+      const MPI_Comm comm = simulator.get_communicator();
+      try
+        {
+          if (norm == 0)
+            x = 0;
+          else if (preconditioner == "local laplacian")
+            {
+              const AmgPreconditioner pre{*amg};
+              if (op.is_symmetric())
+                SolverCG<VectorType>(control).solve(system, x, lifted, pre);
+              else
+                SolverGMRES<VectorType>(control).solve(system, x, lifted, pre);
+            }
+          else
+            {
+              VectorType inverse_diagonal;
+              op.initialize_vector(inverse_diagonal);
+              for (unsigned int k = 0; k < n; ++k)
+                inverse_diagonal.local_element(k) =
+                  is_prescribed[k] ?
+                    1. :
+                    1. / (alpha + beta * row_sum.local_element(k));
+              DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
+              if (op.is_symmetric())
+                SolverCG<VectorType>(control).solve(system, x, lifted, jacobi);
+              else
+                SolverGMRES<VectorType>(control).solve(system,
+                                                       x,
+                                                       lifted,
+                                                       jacobi);
+            }
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          AssertThrow(false,
+                      ExcMessage(
+                        "The linear solve of step " +
+                        std::to_string(step_number + 1) + " (t = " +
+                        to_string(time) + ") did not converge: residual " +
+                        to_string(e.last_residual) + " after " +
+                        std::to_string(e.last_step) + " iterations, " +
+                        "target " + to_string(control.tolerance()) +
+                        ". Raise 'diffusion/Maximum iterations', use "
+                        "'Preconditioner = local laplacian', or a shorter "
+                        "'Time step'. The output written before is "
+                        "complete."));
+        }
+      (void)comm;
+      return control.last_step();
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::implicit_step(Simulator<dim> &simulator)
+    {
+      // (I - theta dt L) C^{n+1} = C^n + (1 - theta) dt (L C^n + S^n)
+      //                           + theta dt S^{n+1}.
+      const unsigned int n = c.locally_owned_size();
+      rhs                  = c;
+      if (theta < 1)
+        {
+          c.update_ghost_values();
+          op.apply(c, lc);
+          c.zero_out_ghost_values();
+          evaluate_source(time, s);
+          for (unsigned int k = 0; k < n; ++k)
+            rhs.local_element(k) +=
+              (1 - theta) * dt * (lc.local_element(k) + s.local_element(k));
+        }
+      ++step_number;
+      time = step_number == n_steps ? end_time : step_number * dt;
+      evaluate_source(time, s);
+      rhs.add(theta * dt, s);
+      apply_dirichlet(time, c);
+      last_iterations = solve(simulator, 1, theta * dt, rhs, c);
+      total_iterations += last_iterations;
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::setup_local_laplacian(Simulator<dim> &simulator,
+                                          const double    alpha,
+                                          const double    beta)
+    {
+      // alpha I - beta K Delta_h on the free nodes, Delta_h the cell-centred
+      // finite-volume Laplacian (2 dim + 1 points, no flux across the
+      // outer boundary); identity rows and no columns for the prescribed
+      // nodes, so that the matrix stays symmetric. At wavelengths above
+      // the horizon L behaves like K Delta (flux matching), below it the
+      // PD symbol saturates: spectrally equivalent at fixed m-ratio.
+      TimerOutput::Scope scope(simulator.get_timer(), "local Laplacian");
+      const auto        &lattice = simulator.get_neighbor_lists().lattice();
+      const MPI_Comm     comm    = simulator.get_communicator();
+      AssertThrow(lattice.is_uniform(),
+                  ExcInvalidInput(section + "/Preconditioner",
+                                  "local laplacian",
+                                  "the local Laplacian needs a uniform grid; "
+                                  "use 'jacobi' on this mesh"));
+      // Whether each node of the set (ghosts too) is prescribed.
+      VectorType flag;
+      op.initialize_vector(flag);
+      for (const auto i : dirichlet_nodes)
+        flag.local_element(op.vector_index(i)) = 1;
+      flag.update_ghost_values();
+      const auto prescribed = [&](const unsigned int i) {
+        return flag.local_element(op.vector_index(i)) != 0;
+      };
+      const auto global = [&](const unsigned int i) {
+        return (*nodes)[i].dofs[0] / dim;
+      };
+      const IndexSet &owned = op.get_partitioner()->locally_owned_range();
+      const double    a =
+        beta * kernel.diffusivity() / (lattice.spacing() * lattice.spacing());
+      TrilinosWrappers::SparsityPattern pattern(owned, comm, 2 * dim + 1);
+      std::vector<std::vector<std::pair<types::global_dof_index, double>>> rows(
+        nodes->n_owned());
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          auto &row = rows[i];
+          if (prescribed(i))
+            {
+              row.emplace_back(global(i), 1.);
+              continue;
+            }
+          double diagonal = alpha;
+          for (unsigned int d = 0; d < dim; ++d)
+            for (const int side : {-1, 1})
+              {
+                auto y = lattice.coordinates(i);
+                y[d] += side;
+                const int j = lattice.node_at(y);
+                if (j < 0)
+                  continue;
+                diagonal += a;
+                if (!prescribed(j))
+                  row.emplace_back(global(j), -a);
+              }
+          row.emplace_back(global(i), diagonal);
+        }
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        for (const auto &entry : rows[i])
+          pattern.add(global(i), entry.first);
+      pattern.compress();
+      laplacian = std::make_unique<TrilinosWrappers::SparseMatrix>();
+      laplacian->reinit(pattern);
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        for (const auto &entry : rows[i])
+          laplacian->set(global(i), entry.first, entry.second);
+      laplacian->compress(VectorOperation::insert);
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+      amg->initialize(*laplacian, data);
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::record_history(Simulator<dim> &simulator)
+    {
+      const MPI_Comm comm    = simulator.get_communicator();
+      double         total   = 0;
+      double         lowest  = std::numeric_limits<double>::max();
+      double         highest = std::numeric_limits<double>::lowest();
+      double         error2 = 0, exact2 = 0, max_error = 0;
+      if (compare)
+        analytical->set_time(time);
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const unsigned int k     = op.vector_index(i);
+          const double       value = c.local_element(k);
+          total += (*nodes)[i].volume() * value;
+          lowest  = std::min(lowest, value);
+          highest = std::max(highest, value);
+          if (compare && !is_prescribed[k])
+            {
+              const double exact = analytical->value((*nodes)[i].location);
+              error2 += (value - exact) * (value - exact);
+              exact2 += exact * exact;
+              max_error = std::max(max_error, std::abs(value - exact));
+            }
+        }
+      total                   = Utilities::MPI::sum(total, comm);
+      lowest                  = Utilities::MPI::min(lowest, comm);
+      highest                 = Utilities::MPI::max(highest, comm);
+      std::vector<double> row = {time,
+                                 double(step_number),
+                                 total,
+                                 lowest,
+                                 highest,
+                                 double(last_iterations)};
+      if (compare)
+        {
+          error2    = Utilities::MPI::sum(error2, comm);
+          exact2    = Utilities::MPI::sum(exact2, comm);
+          max_error = Utilities::MPI::max(max_error, comm);
+          row.push_back(exact2 > 0 ? std::sqrt(error2 / exact2) :
+                                     std::sqrt(error2));
+          row.push_back(max_error);
+        }
+      history.push_back(row);
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::print_progress_line(Simulator<dim> &simulator)
+    {
+      const double now = simulator.elapsed();
+      last_progress    = now;
+      const auto &row  = history.back();
+      auto       &out  = simulator.get_pcout();
+      out << "[" << std::setw(8) << std::fixed << std::setprecision(2) << now
+          << " s] ";
+      if (stepping == "steady state")
+        out << "steady state";
+      else
+        out << "step " << step_number << "/" << n_steps
+            << ", t = " << std::scientific << std::setprecision(4) << time;
+      out << std::scientific << std::setprecision(4) << ", total " << row[2]
+          << ", min " << row[3] << ", max " << row[4];
+      if (stepping != "explicit")
+        out << ", " << last_iterations << " iterations";
+      if (compare)
+        out << ", relative l2 error " << row[6] << ", max error " << row[7];
+      if (stepping != "steady state")
+        {
+          const double rate = step_number / std::max(now - loop_start, 1e-9);
+          out << ", " << std::fixed << std::setprecision(1) << rate
+              << " steps/s, " << std::setprecision(0)
+              << (n_steps - step_number) / std::max(rate, 1e-9) << " s left";
+        }
+      out << std::defaultfloat << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::write_output(Simulator<dim> &simulator)
+    {
+      const MPI_Comm comm = simulator.get_communicator();
+      if (output_interval > 0)
+        while (next_output_time <= time + 1e-12 * std::max(dt, 1e-300))
+          next_output_time += output_interval;
+      const auto &output = simulator.get_output();
+      if (output.enabled())
+        {
+          IO::NodeField concentration{"concentration", {}}, error{"error", {}},
+            rank{"mpi_rank", {}};
+          if (compare)
+            analytical->set_time(time);
+          const double this_rank = Utilities::MPI::this_mpi_process(comm);
+          for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+            {
+              const double value = c.local_element(op.vector_index(i));
+              concentration.values.push_back(value);
+              if (compare)
+                error.values.push_back(value -
+                                       analytical->value((*nodes)[i].location));
+              rank.values.push_back(this_rank);
+            }
+          std::vector<IO::NodeField> fields = {concentration, rank};
+          if (compare)
+            fields.push_back(error);
+          const std::string record = output.write(simulator.get_dof_handler(),
+                                                  *nodes,
+                                                  fields,
+                                                  records.size());
+          records.emplace_back(time, record);
+          output.write_time_series(records, comm);
+        }
+      if (!history_file.empty())
+        {
+          std::string error;
+          if (Utilities::MPI::this_mpi_process(comm) == 0)
+            {
+              const std::string path = output.directory() + "/" + history_file;
+              std::error_code   code;
+              std::filesystem::create_directories(output.directory(), code);
+              error = write_then_rename(path, [&](std::ostream &out) {
+                out << "time,step,total,minimum,maximum,iterations";
+                if (compare)
+                  out << ",relative_l2_error,max_error";
+                out << '\n' << std::setprecision(12);
+                for (const auto &row : history)
+                  {
+                    for (unsigned int k = 0; k < row.size(); ++k)
+                      out << (k > 0 ? "," : "") << row[k];
+                    out << '\n';
+                  }
+              });
+              if (!error.empty())
+                error =
+                  "Invalid value '" + path +
+                  "' for the parameter 'diffusion/History file': " + error +
+                  ".";
+            }
+          throw_on_any_rank(error, comm);
+        }
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::check_finite(Simulator<dim> &simulator) const
+    {
+      const MPI_Comm          comm = simulator.get_communicator();
+      types::global_dof_index bad  = numbers::invalid_dof_index;
+      unsigned int            node = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        if (!std::isfinite(c.local_element(op.vector_index(i))))
+          {
+            bad  = (*nodes)[i].dofs[0];
+            node = i;
+            break;
+          }
+      const auto first = Utilities::MPI::min(bad, comm);
+      if (first == numbers::invalid_dof_index)
+        return;
+      std::string message;
+      if (bad == first)
+        {
+          std::ostringstream text;
+          text << "The concentration is not finite at step " << step_number
+               << " (t = " << time << ") at the node at ("
+               << (*nodes)[node].location
+               << "). Check the source, the boundary values and "
+                  "'diffusion/Time step' (forward Euler bound "
+               << dt_bound
+               << "). The output written before this step is complete.";
+          message = text.str();
+        }
+      throw_on_any_rank(message, comm);
+    }
+
+
+    template <int dim>
+    double
+    Diffusion<dim>::estimated_bytes_per_node(const double coupled) const
+    {
+      return (dim == 3 ? 2048 : 1024) + 4 * coupled;
+    }
+
+
+    template class Diffusion<2>;
+    template class Diffusion<3>;
+  } // namespace Problems
+} // namespace PeriDEAL
+
+PERIDEAL_REGISTER_PROBLEM_TYPE(
+  PeriDEAL::Problems::Diffusion,
+  "diffusion",
+  "Nonlocal (bond-based PD) diffusion: forward Euler within its stability "
+  "bound, backward Euler or Crank-Nicolson with CG on the matrix-free "
+  "operator, or the steady state; Dirichlet layers, fluxes, sources, PVD "
+  "time series and a history CSV.")

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Usage: bad_input.sh PERIDEAL
+#
+# Bad input to the diffusion problem type: each case must exit non-zero (on
+# 1 and on 2 processes, without hanging), print a message that names the
+# offending entry and its value, and leave no output that looks complete. A
+# run whose concentration turns non-finite must stop with the step and the
+# node named and keep the output written before it.
+set -u
+perideal="$1"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+work="$(pwd)/bad_input"
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+
+cat > base.prm <<'PRM'
+set Dimension = 2
+set Problem type = diffusion
+subsection Geometry
+  set Lower corner = 0, 0
+  set Upper corner = 1, 0.5
+  set Subdivisions = 20, 10
+end
+subsection diffusion
+  set Diffusivity = 1
+  set End time = 1e-3
+  set Dirichlet boundary ids = 0
+  subsection Initial concentration
+    set Function expression = x
+  end
+  subsection Source
+    set Function expression = 1
+  end
+end
+subsection Output
+  set Directory = out
+end
+PRM
+"$perideal" base.prm > base.log 2>&1 || { cat base.log; fail "the valid base input failed"; }
+[ -f out/solution.pvd ] && [ -f out/history.csv ] || fail "the valid base input wrote no out/solution.pvd or history.csv"
+rm -rf out
+
+# expect_error "sed expression" "substring of the message" [nprocs]
+expect_error() {
+  local edit="$1" expected="$2" nprocs="${3:-1}" out rc
+  sed -e "$edit" base.prm > case.prm
+  rm -rf out
+  if [ "$nprocs" -eq 1 ]; then
+    out=$("$perideal" case.prm 2>&1); rc=$?
+  else
+    out=$(timeout 120 mpirun --oversubscribe -np "$nprocs" "$perideal" case.prm 2>&1); rc=$?
+  fi
+  [ $rc -ne 0 ] || fail "exit code 0 for: $edit"
+  [ $rc -ne 124 ] || fail "hang (timeout) on $nprocs processes for: $edit"
+  grep -qF -- "$expected" <<<"$out" || { echo "$out"; fail "no '$expected' in the message for: $edit"; }
+  [ -e out/solution.pvd ] && fail "a time series was left behind for: $edit"
+  [ -e out/history.csv ] && fail "a history file was left behind for: $edit"
+  return 0
+}
+
+for np in 1 2; do
+  expect_error 's/set End time = 1e-3/set End time = 1e-3\n  set Time step = 1e-2/' \
+    "Invalid value '0.01' for the parameter 'diffusion/Time step': forward Euler is stable only up to" $np
+  expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Dirichlet layer thickness = 0.01/' \
+    "Invalid value '0.01' for the parameter 'diffusion/Dirichlet layer thickness': the layer of boundary id 0 holds no node centre" $np
+done
+expect_error 's/set Diffusivity = 1/set Diffusivity = -2/' \
+  "Invalid value '-2' for the parameter 'diffusion/Diffusivity': give a diffusivity > 0"
+expect_error 's/set Diffusivity = 1/set Diffusivity = 1\n  set Flux exponent = 4/' \
+  "Invalid value '4' for the parameter 'diffusion/Flux exponent': q must be 0, 1, 2 or 3"
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0, 9/' \
+  "Invalid value '0, 9' for the parameter 'diffusion/Dirichlet boundary ids': boundary id 9 does not occur in the mesh"
+expect_error 's/set Dirichlet boundary ids = 0/set Time stepping = steady state/' \
+  "Invalid value '' for the parameter 'diffusion/Dirichlet boundary ids': a steady state needs prescribed values"
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Time stepping = implicit/' \
+  "Invalid value '0' for the parameter 'diffusion/Time step': implicit time stepping needs a time step > 0"
+expect_error 's/set End time = 1e-3/set End time = -1/' \
+  "Invalid value '-1' for the parameter 'diffusion/End time'"
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Safety factor = 1.5/' \
+  "Invalid value '1.5' for the parameter 'diffusion/Safety factor'"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/' \
+  "'Boundary treatment/Treatment': the diffusion problem supports the 'none' treatment only"
+
+# A concentration that turns non-finite stops the run with the step and the
+# node named; what was written before stays complete.
+for np in 1 2; do
+  sed -e 's/set End time = 1e-3/set End time = 8e-3\n  set Time step = 1e-3\n  set Output every steps = 2\n  set History every steps = 2/' \
+      -e 's/    set Function expression = 1/    set Function expression = t > 3e-3 ? 0\/0 : 1/' base.prm > nan.prm
+  rm -rf out
+  out=$(timeout 120 mpirun --oversubscribe -np $np "$perideal" nan.prm 2>&1); rc=$?
+  [ $rc -ne 0 ] && [ $rc -ne 124 ] || fail "non-finite run on $np processes: exit code $rc"
+  grep -qE "not finite at step [0-9]+ .* at the node at" <<<"$out" || { echo "$out" | tail -5; fail "non-finite run: no step and node named"; }
+  [ -f out/solution.pvd ] || fail "non-finite run: the earlier output is gone"
+  for record in $(sed -n 's/.*file="\([^"]*\)".*/\1/p' out/solution.pvd); do
+    [ -f "out/$record" ] || fail "non-finite run: $record named but missing"
+  done
+  ls out/*.tmp > /dev/null 2>&1 && fail "non-finite run: temporary files remain"
+done
+
+if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi
