@@ -100,6 +100,10 @@ namespace PeriDEAL
               stencil_sum += mu;
             }
         }
+      with_phases = false;
+      n_phases    = 1;
+      factor      = {1.};
+      phase_slot.assign(n_slots, 0);
       c_slot.resize_fast(n_slots);
       r_slot.resize_fast(n_slots);
       std::fill(c_slot.begin(), c_slot.end(), 0.);
@@ -149,27 +153,77 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    DiffusionOperator<dim>::set_phases(
+      const std::vector<unsigned char> &phase_of_node,
+      const unsigned int                n_phases_,
+      const std::vector<double>        &factor_,
+      const double                      gate_,
+      const std::vector<double>        &rate_)
+    {
+      AssertThrow(phase_of_node.size() == nodes->size() &&
+                    factor_.size() == n_phases_ * n_phases_,
+                  ExcMessage("set_phases(): one phase per node of the set "
+                             "and square factor and rate tables"));
+      AssertThrow(rate_.empty() || rate_.size() == factor_.size(),
+                  ExcMessage("set_phases(): a square rate table"));
+      with_phases = true;
+      n_phases    = n_phases_;
+      factor      = factor_;
+      gate        = gate_;
+      rate        = rate_;
+      phase_slot.assign(n_slots, 0);
+      for (unsigned int i = 0; i < nodes->size(); ++i)
+        {
+          AssertThrow(phase_of_node[i] < n_phases, ExcInternalError());
+          phase_slot[slot[i]] = phase_of_node[i];
+        }
+      build_work_lists();
+    }
+
+
+    template <int dim>
+    void
     DiffusionOperator<dim>::build_work_lists()
     {
-      const unsigned int       n_owned = nodes->n_owned();
-      std::vector<std::size_t> bulk_slots;
+      const unsigned int n_owned = nodes->n_owned();
+      // Bulk slots with their phase (runs of one phase only).
+      std::vector<std::pair<std::size_t, unsigned char>> bulk_slots;
+      zero_slots.clear();
       list_nodes.clear();
       list_first.assign(1, 0);
       list_bonds.clear();
       list_sum.clear();
-      bond_visits = 0;
+      bond_visits           = 0;
+      any_special           = false;
+      largest_geometric_sum = 0;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
-          const bool intact =
+          const unsigned char p = phase_slot[slot[i]];
+          const bool          intact =
             bond_state == nullptr || !bond_state->any_broken(i);
           if (use_lattice && lists->has_full_stencil(i) && intact)
             {
-              bulk_slots.push_back(slot[i]);
-              bond_visits += stencil_mu.size();
-              continue;
+              largest_geometric_sum =
+                std::max(largest_geometric_sum, stencil_sum);
+              bool uniform = true;
+              if (with_phases)
+                for (std::size_t k = 0; k < stencil_offset.size() && uniform;
+                     ++k)
+                  uniform = phase_slot[slot[i] + stencil_offset[k]] == p;
+              if (uniform)
+                {
+                  if (factor[p * n_phases + p] == 0)
+                    zero_slots.push_back(slot[i]);
+                  else
+                    {
+                      bulk_slots.emplace_back(slot[i], p);
+                      bond_visits += stencil_mu.size();
+                    }
+                  continue;
+                }
             }
           const Point<dim> &x   = (*nodes)[i].location;
-          double            sum = 0;
+          double            sum = 0, geometric = 0;
           for_each_bond(
             i,
             [&](const unsigned int k, const unsigned int j, const double w) {
@@ -177,24 +231,38 @@ namespace PeriDEAL
                 return;
               const double mu =
                 kernel->conductance(x.distance((*nodes)[j].location)) * w;
-              list_bonds.push_back({static_cast<unsigned int>(slot[j]), mu});
-              sum += mu;
+              geometric += mu;
+              const unsigned char q = phase_slot[slot[j]];
+              const double        f = factor[p * n_phases + q];
+              const double r = rate.empty() ? 0. : rate[p * n_phases + q];
+              if (f == 0 && r == 0)
+                return;
+              unsigned char gated = 0;
+              if (with_phases && p != q && (p == 0 || q == 0) &&
+                  std::isfinite(gate))
+                gated = p == 0 ? 1 : 2;
+              any_special = any_special || gated != 0 || r != 0;
+              list_bonds.push_back(
+                {static_cast<unsigned int>(slot[j]), gated, f * mu, r * mu});
+              sum += f * mu;
             });
+          largest_geometric_sum = std::max(largest_geometric_sum, geometric);
           list_nodes.push_back(i);
           list_first.push_back(list_bonds.size());
           list_sum.push_back(sum);
           bond_visits += list_first.back() - list_first[list_first.size() - 2];
         }
-      n_owned_stencil = bulk_slots.size();
+      n_owned_stencil = bulk_slots.size() + zero_slots.size();
       std::sort(bulk_slots.begin(), bulk_slots.end());
       chunks.clear();
-      for (const auto s : bulk_slots)
+      for (const auto &[s, p] : bulk_slots)
         if (!chunks.empty() &&
             chunks.back().first_slot + chunks.back().length == s &&
-            chunks.back().length < chunk_size)
+            chunks.back().length < chunk_size &&
+            phase_slot[chunks.back().first_slot] == p)
           ++chunks.back().length;
         else
-          chunks.push_back({s, 1});
+          chunks.push_back({s, 1, factor[p * n_phases + p]});
     }
 
 
@@ -262,7 +330,7 @@ namespace PeriDEAL
                     sum[l] += mu * (cj[l] - ci[l]);
                 }
               for (unsigned int l = 0; l < len; ++l)
-                r_slot[s0 + l] = sum[l];
+                r_slot[s0 + l] = chunks[q].factor * sum[l];
             }
         },
         chunk_grain);
@@ -276,12 +344,27 @@ namespace PeriDEAL
             {
               const double ci  = c[slot[list_nodes[q]]];
               double       sum = 0;
-              for (std::size_t b = list_first[q]; b < list_first[q + 1]; ++b)
-                sum += list_bonds[b].mu * (c[list_bonds[b].slot] - ci);
+              if (!any_special)
+                for (std::size_t b = list_first[q]; b < list_first[q + 1]; ++b)
+                  sum += list_bonds[b].mu * (c[list_bonds[b].slot] - ci);
+              else
+                for (std::size_t b = list_first[q]; b < list_first[q + 1]; ++b)
+                  {
+                    const ListBond &bond = list_bonds[b];
+                    const double    cj   = c[bond.slot];
+                    // An interface bond conducts while its phase-0 end is
+                    // below the gate.
+                    if (bond.gated != 0 && (bond.gated == 1 ? ci : cj) >= gate)
+                      continue;
+                    sum += bond.mu * (cj - ci) + bond.flow;
+                  }
               r_slot[slot[list_nodes[q]]] = sum;
             }
         },
         node_grain);
+
+      for (const auto s : zero_slots)
+        r_slot[s] = 0;
 
       double *out = result.begin();
       parallel::apply_to_subranges(
@@ -300,7 +383,11 @@ namespace PeriDEAL
     DiffusionOperator<dim>::row_sums(VectorType &sums) const
     {
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-        sums.local_element(node_index[i]) = stencil_sum;
+        {
+          const unsigned char p = phase_slot[slot[i]];
+          sums.local_element(node_index[i]) =
+            stencil_sum * factor[p * n_phases + p];
+        }
       for (std::size_t q = 0; q < list_nodes.size(); ++q)
         sums.local_element(node_index[list_nodes[q]]) = list_sum[q];
     }
@@ -310,10 +397,20 @@ namespace PeriDEAL
     double
     DiffusionOperator<dim>::gershgorin_bound() const
     {
-      double largest = n_owned_stencil > 0 ? stencil_sum : 0.;
-      for (const double s : list_sum)
-        largest = std::max(largest, s);
-      return 2 * Utilities::MPI::max(largest, nodes->get_communicator());
+      const double largest_factor =
+        *std::max_element(factor.begin(), factor.end());
+      return 2 * largest_factor *
+             Utilities::MPI::max(largest_geometric_sum,
+                                 nodes->get_communicator());
+    }
+
+
+    template <int dim>
+    double
+    DiffusionOperator<dim>::largest_row_sum() const
+    {
+      return Utilities::MPI::max(largest_geometric_sum,
+                                 nodes->get_communicator());
     }
 
 
@@ -395,6 +492,8 @@ namespace PeriDEAL
              list_first.capacity() * sizeof(std::size_t) +
              list_bonds.capacity() * sizeof(ListBond) +
              list_sum.capacity() * sizeof(double) +
+             zero_slots.capacity() * sizeof(std::size_t) +
+             phase_slot.capacity() +
              (c_slot.memory_consumption() + r_slot.memory_consumption());
     }
 

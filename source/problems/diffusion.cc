@@ -54,6 +54,14 @@ namespace PeriDEAL
     {
       Models::DiffusionKernel::declare_parameters(prm);
       prm.declare_entry(
+        "Model",
+        "none",
+        Patterns::Selection(
+          Models::DiffusionModelRegistry<dim>::pattern_string()),
+        "The physics on top of diffusion: none, or corrosion (its entries in "
+        "the subsection of that name).");
+      Models::DiffusionModelRegistry<dim>::declare_parameters(prm);
+      prm.declare_entry(
         "Time stepping",
         "explicit",
         Patterns::Selection("explicit|implicit|steady state"),
@@ -175,9 +183,18 @@ namespace PeriDEAL
     Diffusion<dim>::parse_parameters(ParameterHandler &prm)
     {
       kernel.parse_parameters(prm, section);
-      stepping = prm.get("Time stepping");
-      theta    = prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5;
-      end_time = prm.get_double("End time");
+      stepping   = prm.get("Time stepping");
+      model_name = prm.get("Model");
+      model      = Models::DiffusionModelRegistry<dim>::create(model_name, prm);
+      AssertThrow(stepping == "explicit" || model->supports_implicit(),
+                  ExcInvalidInput(section + "/Time stepping",
+                                  stepping,
+                                  "the model '" + model_name +
+                                    "' runs with explicit time stepping "
+                                    "only"));
+      model_columns = model->history_columns();
+      theta         = prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5;
+      end_time      = prm.get_double("End time");
       AssertThrow(end_time > 0 || stepping == "steady state",
                   ExcInvalidInput(section + "/End time",
                                   prm.get("End time"),
@@ -271,6 +288,18 @@ namespace PeriDEAL
 
 
     template <int dim>
+    Models::DiffusionSetup<dim>
+    Diffusion<dim>::model_setup(Simulator<dim> &simulator)
+    {
+      return {simulator.get_nodes(),
+              simulator.get_neighbor_lists(),
+              kernel,
+              op,
+              horizon};
+    }
+
+
+    template <int dim>
     void
     Diffusion<dim>::run(Simulator<dim> &simulator)
     {
@@ -281,6 +310,7 @@ namespace PeriDEAL
         for (unsigned int i = 0; i < simulator.get_nodes().n_owned(); ++i)
           c.local_element(op.vector_index(i)) =
             initial->value(simulator.get_nodes()[i].location);
+        model->initialize(model_setup(simulator), c);
         apply_dirichlet(0, c);
       }
       if (stepping == "steady state")
@@ -313,17 +343,26 @@ namespace PeriDEAL
             implicit_step(simulator);
           check_finite(simulator);
           const bool last = step_number == n_steps;
-          if (last || step_number % history_every_steps == 0)
+          const bool by_steps =
+            output_every_steps > 0 && step_number % output_every_steps == 0;
+          const bool by_time =
+            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
+          const bool row = last || step_number % history_every_steps == 0;
+          {
+            TimerOutput::Scope model_scope(simulator.get_timer(),
+                                           "model (" + model_name + ")");
+            model->after_step(model_setup(simulator),
+                              time,
+                              c,
+                              row || by_steps || by_time);
+          }
+          if (row)
             {
               record_history(simulator);
               if (last ||
                   simulator.elapsed() - last_progress >= progress_interval_s)
                 print_progress_line(simulator);
             }
-          const bool by_steps =
-            output_every_steps > 0 && step_number % output_every_steps == 0;
-          const bool by_time =
-            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
           if (last || by_steps || by_time)
             {
               TimerOutput::Scope out(simulator.get_timer(), "output");
@@ -349,6 +388,9 @@ namespace PeriDEAL
       for (auto *v : {&c, &lc, &s, &rhs, &row_sum})
         op.initialize_vector(*v);
       op.row_sums(row_sum);
+      // Before any model sets phases (with fixed flows the operator is
+      // affine).
+      radius_estimate = op.estimate_spectral_radius(60);
 
       // Layers: Dirichlet values and flux sources, each layer must hold a
       // node.
@@ -413,7 +455,8 @@ namespace PeriDEAL
         << simulator.elapsed()
         << " s] diffusion: " << simulator.get_summary().n_nodes << " nodes ("
         << n_stencil << " on the shared stencil), " << visits
-        << " bond visits per evaluation, K = " << kernel.diffusivity()
+        << " bond visits per evaluation, K = " << std::scientific
+        << std::setprecision(4) << kernel.diffusivity() << std::defaultfloat
         << ", q = " << kernel.flux_exponent() << ", " << kernel.influence_name()
         << " influence, micro-diffusivity " << std::scientific
         << std::setprecision(6) << kernel.micro_diffusivity()
@@ -430,21 +473,34 @@ namespace PeriDEAL
     Diffusion<dim>::choose_time_step(Simulator<dim> &simulator)
     {
       const double bound = op.gershgorin_bound();
-      radius_estimate    = op.estimate_spectral_radius(60);
       AssertThrow(std::isfinite(bound) && bound > 0,
                   ExcMessage("The stability bound of the time step is not "
                              "finite: the operator has no bonds?"));
       dt_bound = 2 / bound;
+      const double model_bound =
+        model->largest_time_step(model_setup(simulator));
+      const bool limited_by_model = model_bound < dt_bound;
+      if (limited_by_model)
+        {
+          dt_bound = model_bound;
+          simulator.get_pcout()
+            << "           the model '" << model_name
+            << "' limits the time step to " << model_bound << std::endl;
+        }
       if (stepping == "explicit" && given_time_step > 0)
         AssertThrow(given_time_step <= dt_bound || allow_unstable,
-                    ExcInvalidInput(section + "/Time step",
-                                    to_string(given_time_step),
-                                    "forward Euler is stable only up to " +
-                                      to_string(dt_bound) +
-                                      " (2 / Gershgorin's bound of the "
-                                      "operator); give a smaller step, 0 for "
-                                      "the bound, or set 'Allow unstable "
-                                      "time step = true'"));
+                    ExcInvalidInput(
+                      section + "/Time step",
+                      to_string(given_time_step),
+                      "forward Euler is stable only up to " +
+                        to_string(dt_bound) +
+                        (limited_by_model ?
+                           " (the limit of the model '" + model_name + "')" :
+                           std::string(" (2 / Gershgorin's bound of the "
+                                       "operator)")) +
+                        "; give a smaller step, 0 for "
+                        "the bound, or set 'Allow unstable "
+                        "time step = true'"));
       const double target =
         given_time_step > 0 ? given_time_step : safety_factor * dt_bound;
       n_steps = static_cast<unsigned int>(std::ceil(end_time / target - 1e-9));
@@ -803,6 +859,8 @@ namespace PeriDEAL
                                      std::sqrt(error2));
           row.push_back(max_error);
         }
+      const auto values = model->history_values(model_setup(simulator), c);
+      row.insert(row.end(), values.begin(), values.end());
       history.push_back(row);
     }
 
@@ -828,6 +886,11 @@ namespace PeriDEAL
         out << ", " << last_iterations << " iterations";
       if (compare)
         out << ", relative l2 error " << row[6] << ", max error " << row[7];
+      if (!model_columns.empty())
+        out << ", "
+            << model->progress_text(
+                 std::vector<double>(row.end() - model_columns.size(),
+                                     row.end()));
       if (stepping != "steady state")
         {
           const double rate = step_number / std::max(now - loop_start, 1e-9);
@@ -867,6 +930,8 @@ namespace PeriDEAL
           std::vector<IO::NodeField> fields = {concentration, rank};
           if (compare)
             fields.push_back(error);
+          for (auto &field : model->node_fields(model_setup(simulator), c))
+            fields.push_back(std::move(field));
           const std::string record = output.write(simulator.get_dof_handler(),
                                                   *nodes,
                                                   fields,
@@ -886,6 +951,8 @@ namespace PeriDEAL
                 out << "time,step,total,minimum,maximum,iterations";
                 if (compare)
                   out << ",relative_l2_error,max_error";
+                for (const auto &name : model_columns)
+                  out << ',' << name;
                 out << '\n' << std::setprecision(12);
                 for (const auto &row : history)
                   {

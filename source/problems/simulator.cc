@@ -13,6 +13,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
+#include <perideal/models/diffusion_model.h>
 #include <perideal/problems/simulator.h>
 
 #include <algorithm>
@@ -283,7 +284,8 @@ namespace PeriDEAL
         {"Boundary treatment",
          "Treatment",
          Boundary::BoundaryTreatmentRegistry::names()},
-        {"", "Problem type", ProblemTypeRegistry<dim>::names()}};
+        {"", "Problem type", ProblemTypeRegistry<dim>::names()},
+        {"diffusion", "Model", Models::DiffusionModelRegistry<dim>::names()}};
       for (const auto &entry : entries)
         {
           AssertThrow(dim == 2 || entry.path.back() != "Plane model",

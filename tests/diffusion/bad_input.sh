@@ -83,6 +83,55 @@ expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n 
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/' \
   "'Boundary treatment/Treatment': the diffusion problem supports the 'none' treatment only"
 
+# Corrosion.
+cat > corrosion.prm <<'PRM'
+set Dimension = 2
+set Problem type = diffusion
+subsection Geometry
+  set Lower corner = 0, -10e-6
+  set Upper corner = 20e-6, 10e-6
+  set Subdivisions = 20, 20
+end
+subsection diffusion
+  set Model = corrosion
+  set Diffusivity = 8.6e-10
+  set End time = 0.1
+  set Dirichlet boundary ids = 3
+  subsection corrosion
+    set Saturation concentration = 4600
+    set Current density = 5.1e3
+    subsection Initial phase
+      set Function expression = y > 0 ? 0 : 1
+    end
+  end
+end
+subsection Output
+  set Directory = out
+end
+PRM
+"$perideal" corrosion.prm > corrosion.log 2>&1 || { cat corrosion.log; fail "the valid corrosion input failed"; }
+rm -rf out
+cp base.prm base.orig && cp corrosion.prm base.prm
+for np in 1 2; do
+  expect_error 's/      set Function expression = y > 0 ? 0 : 1/      set Function expression = 1/' \
+    "Invalid value '1' for the parameter 'diffusion/corrosion/Initial phase/Function expression': no node starts as electrolyte" $np
+  expect_error 's/      set Function expression = y > 0 ? 0 : 1/      set Function expression = y > 0 ? 0 : 3/' \
+    "the initial phase must be 0 (electrolyte), 1 (metal) or 2 (passive film) at every node" $np
+done
+expect_error 's/set Saturation concentration = 4600/set Saturation concentration = 2e5/' \
+  "Invalid value '2e5' for the parameter 'diffusion/corrosion/Saturation concentration': give 0 < C_sat < 'Solid concentration' (142900)"
+expect_error 's/set Current density = 5.1e3/set Current density = -1/' \
+  "Invalid value '-1' for the parameter 'diffusion/corrosion/Current density': give a current density > 0"
+expect_error 's/set Current density = 5.1e3/set Interface model = interface diffusivity/' \
+  "Invalid value '0' for the parameter 'diffusion/corrosion/Interface diffusivity': give K_LS > 0"
+expect_error 's/set End time = 0.1/set End time = 0.1\n  set Time stepping = implicit\n  set Time step = 1e-3/' \
+  "Invalid value 'implicit' for the parameter 'diffusion/Time stepping': the model 'corrosion' runs with explicit time stepping only"
+expect_error 's/set Model = corrosion/set Model = none/' \
+  "belongs to 'corrosion', but 'diffusion/Model' selects 'none'"
+expect_error 's/set End time = 0.1/set End time = 0.1\n  set Time step = 0.05/' \
+  "Invalid value '0.05' for the parameter 'diffusion/Time step'"
+cp base.orig base.prm
+
 # A concentration that turns non-finite stops the run with the step and the
 # node named; what was written before stays complete.
 for np in 1 2; do

@@ -11,6 +11,9 @@
 #                                            free nodes) in the last row
 #      # check: final_max_error <tol>        largest nodal error, last row
 #      # check: max_iterations <n>           every implicit solve took <= n
+#      # check: conserved_total <tol>        |total - total(0)| <= tol |total(0)|
+#                                            in every row (closed systems)
+#      # check: final_column <name> <min> <max>   last value of a column
 #  - the history (history.csv, without the iteration counts) against
 #    EXPECTED.output by numdiff (relative 1e-7, absolute 1e-12), the same
 #    file for 1 and 2 processes: the
@@ -61,6 +64,19 @@ if [ -n "$tol" ]; then
   awk -F, -v n="$tol" 'NR > 1 && $6 > m { m = $6 } END { printf "largest solver iterations %d (at most %d)\n", m, n; exit !(m <= n && m > 0) }' "$csv" \
     || { cat "$csv"; echo "FAIL: too many iterations"; exit 1; }
 fi
+tol=$(sed -n 's/^# check: conserved_total *//p' input.prm)
+if [ -n "$tol" ]; then
+  awk -F, -v tol="$tol" 'NR == 2 { t0 = $3 } NR > 1 { d = ($3 - t0) / t0; if (d < 0) d = -d; if (d > m) m = d }
+    END { printf "largest relative change of the total %.3e (at most %s)\n", m, tol; exit !(m <= tol) }' "$csv" \
+    || { cat "$csv"; echo "FAIL: the total amount is not conserved"; exit 1; }
+fi
+while read -r name low high; do
+  [ -n "$name" ] || continue
+  column "$name"
+  awk -F, -v name="$name" -v lo="$low" -v hi="$high" 'NR == 1 { for (k = 1; k <= NF; ++k) if ($k == name) c = k; next } { v = $c }
+    END { printf "%s at the end: %.6e (in [%s, %s])\n", name, v, lo, hi; exit !(v >= lo && v <= hi) }' "$csv" \
+    || { cat "$csv"; echo "FAIL: $name out of range"; exit 1; }
+done < <(sed -n 's/^# check: final_column *//p' input.prm)
 # Solver iterations (column 6) may differ by one between partitions: left
 # out of the comparison (the max_iterations check bounds them).
 drop_iterations() { awk -F, -v OFS=, '{ $6 = ""; print }' "$1"; }

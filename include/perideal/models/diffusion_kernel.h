@@ -97,6 +97,13 @@ namespace PeriDEAL
                   const int                p,
                   const InfluenceFunction &omega);
 
+      /// The influence function.
+      const InfluenceFunction &
+      influence() const
+      {
+        return *omega;
+      }
+
       /// The name of the influence function.
       const std::string &
       influence_name() const

@@ -65,6 +65,34 @@ namespace PeriDEAL
       void
       update_bond_state();
 
+      /**
+       * Phases (optional; without them every bond conducts with factor 1).
+       * @p phase_of_node gives every node of the set (owned and ghosts, the
+       * same on every process that holds the node) a phase below
+       * @p n_phases; the conductance of bond (i, j) is multiplied by
+       * @p factor[p_i * n_phases + p_j] (symmetric). A bond between phase 0
+       * and another phase (an interface bond) conducts only while the value
+       * at its phase-0 end is below @p gate (the salt film of corrosion;
+       * +inf: always). With @p rate (optional, antisymmetric,
+       * concentration units) a bond also carries the fixed flow
+       * \f$\rho_{p_i p_j}\,\mu_{ij}\f$ into node i, independent of the
+       * values (the dissolution of corrosion), under the same gate. Nodes
+       * whose whole neighbourhood has their own phase keep the shared
+       * stencil, scaled by the factor (and cost nothing for a factor 0).
+       * Rebuilds the work lists: call again after phases changed.
+       */
+      void
+      set_phases(const std::vector<unsigned char> &phase_of_node,
+                 const unsigned int                n_phases,
+                 const std::vector<double>        &factor,
+                 const double                      gate,
+                 const std::vector<double>        &rate = {});
+
+      /// The largest row sum of the conductances without phase factors,
+      /// \f$\max_i\sum_j\mu_{ij}\f$ over all processes. Collective.
+      double
+      largest_row_sum() const;
+
       const std::shared_ptr<const Utilities::MPI::Partitioner> &
       get_partitioner() const;
 
@@ -95,7 +123,8 @@ namespace PeriDEAL
 
       /**
        * Gershgorin's bound \f$2\max_i\sum_j\mu_{ij}\f$ of the spectral
-       * radius of L. Collective.
+       * radius of L, with every bond at the largest phase factor (so that
+       * it holds whatever the phases become). Collective.
        */
       double
       gershgorin_bound() const;
@@ -143,12 +172,15 @@ namespace PeriDEAL
       {
         std::size_t  first_slot;
         unsigned int length;
+        double       factor;
       };
 
       struct ListBond
       {
-        unsigned int slot;
-        double       mu;
+        unsigned int  slot;
+        unsigned char gated; // 0: always; 1 (2): gate on node (neighbour)
+        double        mu;
+        double        flow; // fixed flow rho mu into the node
       };
 
       /// Call f(k, j, w) for every bond (intact or not) of node i: bond
@@ -179,7 +211,17 @@ namespace PeriDEAL
       std::vector<double>         stencil_mu;
       double                      stencil_sum = 0;
 
+      // Phases per slot, the factor table and the gate.
+      std::vector<unsigned char> phase_slot;
+      unsigned int               n_phases = 1;
+      std::vector<double>        factor   = {1.};
+      std::vector<double>        rate;
+      double                     gate        = 0;
+      bool                       with_phases = false, any_special = false;
+      double                     largest_geometric_sum = 0;
+
       std::vector<Chunk>        chunks;
+      std::vector<std::size_t>  zero_slots;
       std::vector<unsigned int> list_nodes;
       std::vector<std::size_t>  list_first; // per list node, size + 1
       std::vector<ListBond>     list_bonds;

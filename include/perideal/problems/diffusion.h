@@ -9,6 +9,7 @@
 
 #include <perideal/discretization/bond_state.h>
 #include <perideal/models/diffusion_kernel.h>
+#include <perideal/models/diffusion_model.h>
 #include <perideal/operators/diffusion_operator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
@@ -148,10 +149,16 @@ namespace PeriDEAL
       void
       check_finite(Simulator<dim> &simulator) const;
 
+      /// What the diffusion model works on (after setup()).
+      Models::DiffusionSetup<dim>
+      model_setup(Simulator<dim> &simulator);
+
       // Input.
-      Models::DiffusionKernel         kernel;
-      std::string                     stepping = "explicit";
-      double                          theta    = 1;
+      Models::DiffusionKernel                      kernel;
+      std::string                                  model_name = "none";
+      std::unique_ptr<Models::DiffusionModel<dim>> model;
+      std::string                                  stepping = "explicit";
+      double                                       theta    = 1;
       double                          end_time = 1, given_time_step = 0;
       double                          safety_factor  = 0.9;
       bool                            allow_unstable = false;
@@ -186,6 +193,7 @@ namespace PeriDEAL
       unsigned int step_number = 0, n_steps = 0;
       unsigned int last_iterations = 0, total_iterations = 0;
       double       last_progress = 0, next_output_time = 0, loop_start = 0;
+      std::vector<std::string>                    model_columns;
       std::vector<std::vector<double>>            history;
       std::vector<std::pair<double, std::string>> records;
     };

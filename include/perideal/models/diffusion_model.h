@@ -1,0 +1,124 @@
+#ifndef perideal_models_diffusion_model_h
+#define perideal_models_diffusion_model_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <perideal/base/plugin_registry.h>
+#include <perideal/discretization/neighbor_list.h>
+#include <perideal/discretization/node_set.h>
+#include <perideal/io/solution_output.h>
+#include <perideal/models/diffusion_kernel.h>
+#include <perideal/operators/diffusion_operator.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Models
+  {
+    using namespace dealii;
+
+    /// What a diffusion model works on: the set-up of the diffusion
+    /// problem.
+    template <int dim>
+    struct DiffusionSetup
+    {
+      const Discretization::NodeSet<dim>      &nodes;
+      const Discretization::NeighborList<dim> &lists;
+      const DiffusionKernel                   &kernel;
+      Operators::DiffusionOperator<dim>       &op;
+      double                                   horizon;
+    };
+
+    /**
+     * The physics on top of plain diffusion, chosen with `diffusion/Model`
+     * (registered by name; its entries live in the subsection
+     * `diffusion/<name>`): `none` (plain diffusion) or `corrosion`. The
+     * problem type calls the hooks below; a model changes the operator
+     * through DiffusionOperator::set_phases() and the state through the
+     * concentration vector.
+     */
+    template <int dim>
+    class DiffusionModel
+    {
+    public:
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+      virtual ~DiffusionModel() = default;
+
+      /// Read the entries of the model's subsection.
+      virtual void
+      parse_parameters(ParameterHandler &prm);
+
+      /// Whether implicit time stepping and steady states apply.
+      virtual bool
+      supports_implicit() const;
+
+      /**
+       * Set up the model once the operator and the initial concentration
+       * (owned values of @p c) exist; may overwrite @p c and configure the
+       * operator. Collective.
+       */
+      virtual void
+      initialize(const DiffusionSetup<dim> &setup, VectorType &c);
+
+      /// The largest explicit time step the model allows besides the
+      /// stability bound (+inf by default). Collective.
+      virtual double
+      largest_time_step(const DiffusionSetup<dim> &setup) const;
+
+      /**
+       * After each time step, with the owned values of @p c at @p time;
+       * @p record: a history row or an output follows. Collective.
+       */
+      virtual void
+      after_step(const DiffusionSetup<dim> &setup,
+                 const double               time,
+                 VectorType                &c,
+                 const bool                 record);
+
+      /// Names of the model's columns of the history file.
+      virtual std::vector<std::string>
+      history_columns() const;
+
+      /// The values of those columns now. Collective.
+      virtual std::vector<double>
+      history_values(const DiffusionSetup<dim> &setup,
+                     const VectorType          &c) const;
+
+      /// Fields per owned node for the output.
+      virtual std::vector<IO::NodeField>
+      node_fields(const DiffusionSetup<dim> &setup, const VectorType &c) const;
+
+      /// Text for the progress line from history_values().
+      virtual std::string
+      progress_text(const std::vector<double> &values) const;
+
+      static std::string
+      family_name();
+    };
+
+    template <int dim>
+    using DiffusionModelRegistry = PluginRegistry<DiffusionModel<dim>>;
+  } // namespace Models
+
+  extern template class PluginRegistry<Models::DiffusionModel<2>>;
+  extern template class PluginRegistry<Models::DiffusionModel<3>>;
+} // namespace PeriDEAL
+
+/// Register the diffusion model @p Class (a template over dim) as @p name.
+#define PERIDEAL_REGISTER_DIFFUSION_MODEL(Class, name, description) \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::DiffusionModel<2>,    \
+                          Class<2>,                                 \
+                          name,                                     \
+                          description)                              \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::DiffusionModel<3>,    \
+                          Class<3>,                                 \
+                          name,                                     \
+                          description)
+
+#endif
