@@ -383,6 +383,26 @@ namespace PeriDEAL
       const MPI_Comm comm  = simulator.get_communicator();
       horizon              = simulator.get_horizon();
       kernel.reinit(dim, horizon);
+      if (kernel.calibrates_on_lattice())
+        {
+          const auto &lists = simulator.get_neighbor_lists();
+          AssertThrow(lists.lattice().is_uniform() && !lists.stencil().empty(),
+                      ExcInvalidInput(section +
+                                        "/Micro-diffusivity calibration",
+                                      "lattice",
+                                      "the mesh is not a uniform grid; use "
+                                      "'continuum'"));
+          std::vector<std::array<int, dim>> offsets;
+          std::vector<double>               fractions;
+          for (const auto &o : lists.stencil())
+            {
+              offsets.push_back(o.offset);
+              fractions.push_back(o.beta);
+            }
+          kernel.calibrate_on_lattice<dim>(lists.lattice().spacing(),
+                                           offsets,
+                                           fractions);
+        }
       bond_state.reinit(nodes, simulator.get_neighbor_lists());
       op.reinit(nodes, simulator.get_neighbor_lists(), kernel, &bond_state);
       for (auto *v : {&c, &lc, &s, &rhs, &row_sum})
@@ -460,8 +480,10 @@ namespace PeriDEAL
         << ", q = " << kernel.flux_exponent() << ", " << kernel.influence_name()
         << " influence, micro-diffusivity " << std::scientific
         << std::setprecision(6) << kernel.micro_diffusivity()
-        << std::defaultfloat << ", "
-        << Utilities::MPI::sum(dirichlet_nodes.size(), comm)
+        << std::defaultfloat
+        << (kernel.calibrates_on_lattice() ? " (on the lattice)" :
+                                             " (continuum)")
+        << ", " << Utilities::MPI::sum(dirichlet_nodes.size(), comm)
         << " Dirichlet nodes, " << Utilities::MPI::sum(flux_nodes.size(), comm)
         << " flux nodes, " << stepping << ", " << MultithreadInfo::n_threads()
         << " thread(s) per process" << std::endl;

@@ -5,8 +5,10 @@
 
 #include <perideal/models/influence_function.h>
 
+#include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace PeriDEAL
 {
@@ -52,9 +54,39 @@ namespace PeriDEAL
       void
       parse_parameters(ParameterHandler &prm, const std::string &section);
 
-      /// Set the dimension and the horizon; computes \f$\kappa\f$.
+      /// Set the dimension and the horizon; computes \f$\kappa\f$ by flux
+      /// matching on the continuous ball.
       void
       reinit(const unsigned int dim, const double horizon);
+
+      /**
+       * Whether 'Micro-diffusivity calibration = lattice': \f$\kappa\f$ is
+       * to be matched on the discrete stencil of a uniform grid
+       * (calibrate_on_lattice()) instead of the continuous ball.
+       */
+      bool
+      calibrates_on_lattice() const
+      {
+        return on_lattice;
+      }
+
+      /**
+       * Match \f$\kappa\f$ on a uniform grid of spacing @p h: with the
+       * neighbours' offsets @p offsets (in cells) and partial-volume
+       * fractions @p fractions, the discrete operator maps \f$|x|^2\f$ to
+       * \f$2dK\f$ exactly:
+       * \f$\kappa_h = 2dK / \sum_k \omega_k r_k^{2-q} \beta_k h^d\f$. The
+       * discrete model then tends to classical diffusion with the
+       * diffusivity K as the horizon shrinks at fixed m-ratio
+       * (asymptotic compatibility), which the continuous calibration misses
+       * by the one-point rule's error (e.g. \f$1/(\pi m^2)\f$ for q = 2 in
+       * 2D).
+       */
+      template <int dim>
+      void
+      calibrate_on_lattice(const double                             h,
+                           const std::vector<std::array<int, dim>> &offsets,
+                           const std::vector<double>               &fractions);
 
       /// The classical diffusivity K.
       double
@@ -112,10 +144,11 @@ namespace PeriDEAL
       }
 
     private:
-      double                             K       = 1;
-      unsigned int                       q       = 2;
-      double                             horizon = 0;
-      double                             kappa   = 0;
+      double                             K          = 1;
+      unsigned int                       q          = 2;
+      double                             horizon    = 0;
+      double                             kappa      = 0;
+      bool                               on_lattice = false;
       std::string                        omega_name;
       std::unique_ptr<InfluenceFunction> omega;
     };
