@@ -163,8 +163,9 @@ namespace PeriDEAL
                         "false",
                         Patterns::Bool(),
                         "Continue from <Output/Directory>/checkpoint, "
-                        "written by a run of the same input on the same "
-                        "number of processes.");
+                        "written by a run of the same input (on any number "
+                        "of processes: bitwise the same result on the same "
+                        "number, to round-off on another).");
       prm.declare_entry("Progress interval",
                         "5",
                         Patterns::Double(0),

@@ -8,13 +8,23 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 
 // Checkpoint and restart of the explicit dynamics problem type.
 //
 // Layout of <Output/Directory>/checkpoint/:
-//   run.bin          (rank 0) time, step, counters, energy rows, records
-//   state.<rank>.bin (every rank) u, v, a, forces of the owned DoFs and the
-//                    bond state of the rank's nodes
+//   run.bin          (rank 0) time, step, counters, energy rows, records,
+//                    the number of processes that wrote the state
+//   state.<rank>.bin (every rank) per owned node: its position (the key),
+//                    u, v, a and the force, and the positions of the
+//                    neighbours at the ends of its broken bonds
+// Nodes are identified by their position, which is the same bits on every
+// process and for every partition (the mesh is rebuilt from the input), so
+// a run may resume on another number of processes: each process reads every
+// state file and keeps the records of its own nodes. The mesh of a PD run
+// never changes, so the triangulation itself is not saved (with adaptive
+// refinement this would become Triangulation::save/load with the node data
+// attached to cells).
 // All files go to checkpoint.new/ first; when every rank has written its
 // part, rank 0 renames checkpoint/ to checkpoint.old/, checkpoint.new/ to
 // checkpoint/ and removes checkpoint.old/. A run killed at any moment leaves
@@ -27,7 +37,7 @@ namespace PeriDEAL
   {
     namespace
     {
-      constexpr std::uint64_t magic = 0x5045524944594e31; // "PERIDYN1"
+      constexpr std::uint64_t magic = 0x5045524944594e32; // "PERIDYN2"
 
       template <typename T>
       void
@@ -98,14 +108,27 @@ namespace PeriDEAL
         if (!out)
           error = "Cannot write the checkpoint file '" + path.string() + "'.";
       };
+      const auto &nodes = simulator.get_nodes();
       write_file(fresh / ("state." + std::to_string(rank) + ".bin"),
                  [&](std::ostream &out) {
                    put(out, magic);
-                   put<std::uint64_t>(out, u.locally_owned_size());
-                   for (const auto *vector : {&u, &v, &a, &force})
-                     out.write(reinterpret_cast<const char *>(vector->begin()),
-                               vector->locally_owned_size() * sizeof(double));
-                   bond_state.save(out);
+                   put<std::uint64_t>(out, nodes.n_owned());
+                   for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+                     {
+                       for (unsigned int d = 0; d < dim; ++d)
+                         put(out, nodes[i].location[d]);
+                       for (const auto *vector : {&u, &v, &a, &force})
+                         for (unsigned int c = 0; c < dim; ++c)
+                           put(out, (*vector)[nodes[i].dofs[c]]);
+                       put<std::uint64_t>(out, bond_state.n_broken(i));
+                       const unsigned int n_bonds =
+                         simulator.get_neighbor_lists().n_bonds(i);
+                       for (unsigned int k = 0; k < n_bonds; ++k)
+                         if (bond_state.is_broken(i, k))
+                           for (unsigned int d = 0; d < dim; ++d)
+                             put(out,
+                                 nodes[bond_state.neighbor(i, k)].location[d]);
+                     }
                  });
       if (rank == 0)
         write_file(fresh / "run.bin", [&](std::ostream &out) {
@@ -156,10 +179,9 @@ namespace PeriDEAL
     void
     ExplicitDynamics<dim>::read_checkpoint(Simulator<dim> &simulator)
     {
-      namespace fs         = std::filesystem;
-      const MPI_Comm comm  = simulator.get_communicator();
-      const auto     rank  = Utilities::MPI::this_mpi_process(comm);
-      const auto     ranks = Utilities::MPI::n_mpi_processes(comm);
+      namespace fs        = std::filesystem;
+      const MPI_Comm comm = simulator.get_communicator();
+      const auto     rank = Utilities::MPI::this_mpi_process(comm);
       const fs::path base(simulator.get_output().directory());
       // The complete checkpoint: checkpoint/, or checkpoint.old/ if the run
       // was killed between the two renames. Rank 0 decides for everyone.
@@ -185,12 +207,8 @@ namespace PeriDEAL
       if (get<std::uint64_t>(run) != magic)
         error = "'" + (dir / "run.bin").string() +
                 "' is not a PeriDEAL dynamics checkpoint.";
-      else if (get<std::uint64_t>(run) != ranks)
-        error = "The checkpoint in '" + dir.string() +
-                "' was written by a run on another number of processes; "
-                "resume on the same number (restarts on another number are "
-                "not supported yet).";
       throw_on_any_rank(error, comm);
+      const auto writers           = get<std::uint64_t>(run);
       time                         = get<double>(run);
       const double checkpoint_step = get<double>(run);
       step_number                  = get<std::uint64_t>(run);
@@ -222,25 +240,94 @@ namespace PeriDEAL
                 "' is truncated.";
       throw_on_any_rank(error, comm);
 
+      // Every process reads every state file and keeps its own nodes: the
+      // writers' partition does not matter.
+      const auto &nodes = simulator.get_nodes();
+      using Key         = std::array<double, dim>;
+      std::map<Key, unsigned int> index_of;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          Key key;
+          for (unsigned int d = 0; d < dim; ++d)
+            key[d] = nodes[i].location[d];
+          index_of.emplace(key, i);
+        }
+      unsigned int restored = 0, unknown_neighbors = 0;
       check_on_all_ranks(
         [&]() {
-          const fs::path path =
-            dir / ("state." + std::to_string(rank) + ".bin");
-          std::ifstream in(path, std::ios::binary);
-          AssertThrow(get<std::uint64_t>(in) == magic &&
-                        get<std::uint64_t>(in) == u.locally_owned_size(),
-                      ExcMessage("The checkpoint file '" + path.string() +
-                                 "' does not fit this run (another mesh or "
-                                 "partition)."));
-          for (auto *vector : {&u, &v, &a, &force})
-            in.read(reinterpret_cast<char *>(vector->begin()),
-                    vector->locally_owned_size() * sizeof(double));
-          AssertThrow(in,
-                      ExcMessage("The checkpoint file '" + path.string() +
-                                 "' is truncated."));
-          bond_state.load(in);
+          for (std::uint64_t r = 0; r < writers; ++r)
+            {
+              const fs::path path =
+                dir / ("state." + std::to_string(r) + ".bin");
+              std::ifstream in(path, std::ios::binary);
+              AssertThrow(get<std::uint64_t>(in) == magic,
+                          ExcMessage("The checkpoint file '" + path.string() +
+                                     "' is missing or not a PeriDEAL "
+                                     "dynamics checkpoint."));
+              const auto n_records = get<std::uint64_t>(in);
+              const auto read_key  = [&]() {
+                Key key;
+                for (unsigned int d = 0; d < dim; ++d)
+                  key[d] = get<double>(in);
+                return key;
+              };
+              for (std::uint64_t record = 0; record < n_records && in; ++record)
+                {
+                  const auto it = index_of.find(read_key());
+                  const bool mine =
+                    it != index_of.end() && it->second < nodes.n_owned();
+                  double values[4][dim];
+                  for (auto &vector : values)
+                    for (unsigned int c = 0; c < dim; ++c)
+                      vector[c] = get<double>(in);
+                  const auto n_broken = get<std::uint64_t>(in);
+                  if (mine)
+                    {
+                      const unsigned int i = it->second;
+                      ++restored;
+                      for (unsigned int c = 0; c < dim; ++c)
+                        {
+                          const auto dof = nodes[i].dofs[c];
+                          u[dof]         = values[0][c];
+                          v[dof]         = values[1][c];
+                          a[dof]         = values[2][c];
+                          force[dof]     = values[3][c];
+                        }
+                      for (std::uint64_t b = 0; b < n_broken; ++b)
+                        {
+                          const auto neighbor = index_of.find(read_key());
+                          const int  k =
+                            neighbor == index_of.end() ?
+                               -1 :
+                               bond_state.bond_index(i, neighbor->second);
+                          if (k < 0)
+                            ++unknown_neighbors;
+                          else if (!bond_state.is_broken(i, k))
+                            bond_state.break_bond(i, k);
+                        }
+                    }
+                  else
+                    in.seekg(n_broken * dim * sizeof(double), std::ios::cur);
+                }
+              AssertThrow(in,
+                          ExcMessage("The checkpoint file '" + path.string() +
+                                     "' is truncated."));
+            }
         },
         comm);
+      AssertThrow(Utilities::MPI::min(restored == nodes.n_owned() &&
+                                          unknown_neighbors == 0 ?
+                                        1 :
+                                        0,
+                                      comm) == 1,
+                  ExcInvalidInput("explicit dynamics/Resume from checkpoint",
+                                  "true",
+                                  "the checkpoint in '" + dir.string() +
+                                    "' does not fit this mesh (nodes or "
+                                    "bonds not found: another mesh or "
+                                    "horizon?); resume with the input that "
+                                    "wrote it"));
+      bond_state.synchronize();
       u.update_ghost_values();
       bond_operator.update_bond_state();
       simulator.get_pcout()

@@ -133,8 +133,9 @@ namespace PeriDEAL
       print_progress_line(Simulator<dim> &simulator);
 
       /**
-       * Write the state (u, v, a, forces and bond state of every process,
-       * time, counters, energy rows and output records) to
+       * Write the state (per owned node, keyed by its position: u, v, a,
+       * force and the neighbours of its broken bonds; time, counters,
+       * energy rows and output records) to
        * <output>/checkpoint: into checkpoint.new, then renamed, so that a
        * run killed while writing keeps its last good checkpoint
        * (explicit_dynamics_checkpoint.cc). Collective.
@@ -142,8 +143,8 @@ namespace PeriDEAL
       void
       write_checkpoint(Simulator<dim> &simulator);
 
-      /// Read what write_checkpoint() wrote (same input, same number of
-      /// processes). Collective.
+      /// Read what write_checkpoint() wrote (same input, any number of
+      /// processes: nodes are keyed by position). Collective.
       void
       read_checkpoint(Simulator<dim> &simulator);
 
