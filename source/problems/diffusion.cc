@@ -369,6 +369,12 @@ namespace PeriDEAL
               write_output(simulator);
             }
         }
+      if (stepping == "implicit")
+        simulator.get_pcout()
+          << "           " << total_iterations << " solver iterations in "
+          << n_steps << " steps (" << std::fixed << std::setprecision(1)
+          << double(total_iterations) / std::max(n_steps, 1u)
+          << " per step)" << std::defaultfloat << std::endl;
     }
 
 

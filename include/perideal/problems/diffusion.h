@@ -70,8 +70,9 @@ namespace PeriDEAL
       void
       run(Simulator<dim> &simulator) override;
 
-      /// Mesh, DoFs, nodes and a few scalar vectors; lists only at
-      /// boundaries of a uniform grid (8 bytes a bond off it).
+      /// Mesh, DoFs, nodes and a few scalar vectors; lists (16 bytes a
+      /// bond) only near boundaries and interfaces of a uniform grid,
+      /// counted as 4 bytes per coupled neighbour on average.
       double
       estimated_bytes_per_node(const double coupled) const override;
 
