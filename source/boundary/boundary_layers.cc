@@ -7,6 +7,7 @@
 #include <perideal/boundary/boundary_layers.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace PeriDEAL
 {
@@ -87,6 +88,52 @@ namespace PeriDEAL
           *n_owned_per_id = count;
         }
       return layer;
+    }
+
+
+    template <int dim>
+    std::vector<Point<dim>>
+    BoundaryLayers<dim>::nearest_face_points(
+      const Discretization::NodeSet<dim> &nodes,
+      const double                        thickness) const
+    {
+      std::vector<decltype(pack_rtree(faces[0]))> trees;
+      for (const auto &f : faces)
+        trees.push_back(pack_rtree(f));
+      Point<dim> none;
+      for (unsigned int d = 0; d < dim; ++d)
+        none[d] = std::numeric_limits<double>::quiet_NaN();
+      std::vector<Point<dim>>       nearest(nodes.size(), none);
+      std::vector<BoundingBox<dim>> candidates;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const auto            &x = nodes[i].location;
+          const BoundingBox<dim> point(std::make_pair(x, x));
+          BoundingBox<dim>       search = point;
+          search.extend(thickness);
+          double best = thickness * thickness;
+          for (const auto &tree : trees)
+            {
+              candidates.clear();
+              tree.query(boost::geometry::index::intersects(search),
+                         std::back_inserter(candidates));
+              for (const auto &face : candidates)
+                {
+                  Point<dim> p;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    p[d] = std::clamp(x[d],
+                                      face.get_boundary_points().first[d],
+                                      face.get_boundary_points().second[d]);
+                  const double d2 = p.distance_square(x);
+                  if (d2 < best)
+                    {
+                      best       = d2;
+                      nearest[i] = p;
+                    }
+                }
+            }
+        }
+      return nearest;
     }
 
 

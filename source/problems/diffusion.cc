@@ -123,6 +123,18 @@ namespace PeriDEAL
                         "1",
                         Patterns::Double(),
                         "Thickness of the Dirichlet layers, in horizons.");
+      prm.declare_entry(
+        "Dirichlet layer values",
+        "function",
+        Patterns::Selection("function|surface value|mirror"),
+        "How the Dirichlet layers get their values. function: 'Boundary "
+        "concentration' at each layer node (needs the solution in the "
+        "layer, e.g. a manufactured one); surface value: its value at the "
+        "nearest point of the physical surface (the inner face of the "
+        "layer), extended as a constant; mirror: 2 g(x_b) - C(x_m), the "
+        "odd reflection through the surface point x_b of the value at the "
+        "mirror node x_m (second order for a smooth solution; explicit time "
+        "stepping, uniform grids).");
       prm.enter_subsection("Boundary concentration");
       Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
       prm.leave_subsection();
@@ -243,9 +255,17 @@ namespace PeriDEAL
       dirichlet_ids            = parse_ids(dirichlet_ids_text);
       flux_ids                 = parse_ids(flux_ids_text);
       dirichlet_thickness_text = prm.get("Dirichlet layer thickness");
-      flux_thickness_text      = prm.get("Flux layer thickness");
-      dirichlet_thickness      = prm.get_double("Dirichlet layer thickness");
-      flux_thickness           = prm.get_double("Flux layer thickness");
+      layer_values             = prm.get("Dirichlet layer values");
+      AssertThrow(layer_values != "mirror" || stepping == "explicit",
+                  ExcInvalidInput(section + "/Dirichlet layer values",
+                                  layer_values,
+                                  "mirror layers need 'Time stepping = "
+                                  "explicit' (their values depend on the "
+                                  "solution); use 'surface value' or "
+                                  "'function'"));
+      flux_thickness_text = prm.get("Flux layer thickness");
+      dirichlet_thickness = prm.get_double("Dirichlet layer thickness");
+      flux_thickness      = prm.get_double("Flux layer thickness");
       AssertThrow(dirichlet_thickness > 0,
                   ExcInvalidInput(section + "/Dirichlet layer thickness",
                                   dirichlet_thickness_text,
@@ -373,8 +393,8 @@ namespace PeriDEAL
         simulator.get_pcout()
           << "           " << total_iterations << " solver iterations in "
           << n_steps << " steps (" << std::fixed << std::setprecision(1)
-          << double(total_iterations) / std::max(n_steps, 1u)
-          << " per step)" << std::defaultfloat << std::endl;
+          << double(total_iterations) / std::max(n_steps, 1u) << " per step)"
+          << std::defaultfloat << std::endl;
     }
 
 
@@ -469,6 +489,7 @@ namespace PeriDEAL
                           flux_thickness,
                           "Flux layer thickness",
                           flux_thickness_text);
+      setup_layer_values(simulator);
       is_prescribed.assign(c.locally_owned_size(), false);
       for (const auto i : dirichlet_nodes)
         is_prescribed[op.vector_index(i)] = true;
@@ -546,14 +567,114 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    Diffusion<dim>::setup_layer_values(Simulator<dim> &simulator)
+    {
+      surface_points.clear();
+      mirror_nodes.clear();
+      mirror_level.clear();
+      if (layer_values == "function" || dirichlet_ids.empty())
+        return;
+      const auto    &tria  = simulator.get_dof_handler().get_triangulation();
+      const MPI_Comm comm  = simulator.get_communicator();
+      const double   l     = dirichlet_thickness * horizon;
+      const auto     faces = Boundary::BoundaryLayers<dim>(tria, dirichlet_ids)
+                           .nearest_face_points(*nodes, l);
+      const auto &lattice = simulator.get_neighbor_lists().lattice();
+      const auto  n       = nodes->size();
+      // For every layer node of the set (ghosts too: mirror chains pass
+      // through them): the surface point x_b = p + l (x - p) / |x - p|,
+      // from the nearest point p of the outer face inwards through the
+      // layer, and the node at the mirror image 2 x_b - x.
+      std::vector<Point<dim>> x_b(n);
+      std::vector<int>        mirror(n, -1);
+      std::vector<bool>       in_layer(n, false);
+      unsigned int            missing = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        in_layer[i] = std::isfinite(faces[i][0]);
+      for (unsigned int i = 0; i < n; ++i)
+        if (in_layer[i])
+          {
+            const Point<dim>    &x      = (*nodes)[i].location;
+            const Tensor<1, dim> inward = x - faces[i];
+            x_b[i]                      = faces[i] + l / inward.norm() * inward;
+            if (layer_values != "mirror")
+              continue;
+            if (lattice.is_uniform())
+              {
+                auto y = lattice.coordinates(i);
+                for (unsigned int d = 0; d < dim; ++d)
+                  y[d] +=
+                    std::llround(2 * (x_b[i][d] - x[d]) / lattice.spacing());
+                mirror[i] = lattice.node_at(y);
+              }
+            if (mirror[i] >= 0 &&
+                (*nodes)[mirror[i]].location.distance(
+                  Point<dim>(2 * x_b[i] - x)) > 1e-6 * lattice.spacing())
+              mirror[i] = -1;
+          }
+      // Levels: 1 for a mirror image among the free nodes, 1 + its level
+      // for one in another layer (near edges and corners the image across
+      // the nearest face lies in the next face's layer: reflected again).
+      std::vector<unsigned int> level(n, 0);
+      for (unsigned int sweep = 0; sweep <= dim; ++sweep)
+        for (unsigned int i = 0; i < n; ++i)
+          if (in_layer[i] && mirror[i] >= 0)
+            level[i] = in_layer[mirror[i]] ?
+                         (level[mirror[i]] > 0 ? level[mirror[i]] + 1 : 0) :
+                         1;
+      for (const auto i : dirichlet_nodes)
+        {
+          surface_points.push_back(x_b[i]);
+          if (layer_values != "mirror")
+            continue;
+          if (mirror[i] < 0 || level[i] == 0 || level[i] > dim)
+            ++missing;
+          mirror_nodes.push_back(
+            mirror[i] < 0 ? 0u : static_cast<unsigned int>(mirror[i]));
+          mirror_level.push_back(level[i]);
+        }
+      AssertThrow(Utilities::MPI::sum(missing, comm) == 0,
+                  ExcInvalidInput(section + "/Dirichlet layer values",
+                                  layer_values,
+                                  "a layer node has no node at its mirror "
+                                  "image (mirror layers need a uniform grid "
+                                  "whose layers end at cell faces, and a "
+                                  "body thicker than two layers); use "
+                                  "'surface value'"));
+    }
+
+
+    template <int dim>
+    void
     Diffusion<dim>::apply_dirichlet(const double t, VectorType &x) const
     {
       if (dirichlet_nodes.empty())
         return;
       boundary_value->set_time(t);
-      for (const auto i : dirichlet_nodes)
-        x.local_element(op.vector_index(i)) =
-          boundary_value->value((*nodes)[i].location);
+      if (layer_values == "function")
+        for (const auto i : dirichlet_nodes)
+          x.local_element(op.vector_index(i)) =
+            boundary_value->value((*nodes)[i].location);
+      else if (layer_values == "surface value")
+        for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
+          x.local_element(op.vector_index(dirichlet_nodes[k])) =
+            boundary_value->value(surface_points[k]);
+      else
+        {
+          // Mirror values read the free nodes (level 1) or layer nodes of
+          // a lower level (edges, corners), some of them off-process: one
+          // ghost update per level.
+          for (unsigned int level = 1; level <= dim; ++level)
+            {
+              x.update_ghost_values();
+              for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
+                if (mirror_level[k] == level)
+                  x.local_element(op.vector_index(dirichlet_nodes[k])) =
+                    2 * boundary_value->value(surface_points[k]) -
+                    x.local_element(op.vector_index(mirror_nodes[k]));
+              x.zero_out_ghost_values();
+            }
+        }
     }
 
 

@@ -76,6 +76,8 @@ expect_error 's/set Dirichlet boundary ids = 0/set Time stepping = steady state/
   "Invalid value '' for the parameter 'diffusion/Dirichlet boundary ids': a steady state needs prescribed values"
 expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Time stepping = implicit/' \
   "Invalid value '0' for the parameter 'diffusion/Time step': implicit time stepping needs a time step > 0"
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Dirichlet layer values = mirror\n  set Time stepping = implicit\n  set Time step = 1e-4/' \
+  "Invalid value 'mirror' for the parameter 'diffusion/Dirichlet layer values': mirror layers need 'Time stepping = explicit'"
 expect_error 's/set End time = 1e-3/set End time = -1/' \
   "Invalid value '-1' for the parameter 'diffusion/End time'"
 expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Safety factor = 1.5/' \

@@ -55,6 +55,17 @@ namespace PeriDEAL
                      const double                        thickness,
                      std::vector<unsigned int> *n_owned_per_id = nullptr) const;
 
+      /**
+       * For each node (owned and ghost) of @p nodes closer than
+       * @p thickness to a face with one of the ids: the nearest point on
+       * those faces (each face taken as its bounding box, exact for the
+       * axis-aligned faces of box meshes); for the other nodes a point with
+       * NaN coordinates. No communication.
+       */
+      std::vector<Point<dim>>
+      nearest_face_points(const Discretization::NodeSet<dim> &nodes,
+                          const double                        thickness) const;
+
     private:
       /// The triangulation's communicator.
       MPI_Comm                                   comm;

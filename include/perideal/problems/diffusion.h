@@ -89,11 +89,12 @@ namespace PeriDEAL
         return false;
       }
 
-      /// Diffusion bonds couple over one horizon.
+      /// Diffusion bonds couple over one horizon; mirror layers reach
+      /// their mirror nodes up to two layer thicknesses away.
       bool
       couples_two_horizons(const Models::Model<dim> &) const override
       {
-        return false;
+        return layer_values == "mirror";
       }
 
     private:
@@ -104,6 +105,10 @@ namespace PeriDEAL
 
       void
       choose_time_step(Simulator<dim> &simulator);
+
+      /// Surface points and mirror nodes of the Dirichlet layers.
+      void
+      setup_layer_values(Simulator<dim> &simulator);
 
       /// Values of the Dirichlet nodes at time @p t into @p c.
       void
@@ -156,7 +161,8 @@ namespace PeriDEAL
 
       // Input.
       Models::DiffusionKernel                      kernel;
-      std::string                                  model_name = "none";
+      std::string                                  model_name   = "none";
+      std::string                                  layer_values = "function";
       std::unique_ptr<Models::DiffusionModel<dim>> model;
       std::string                                  stepping = "explicit";
       double                                       theta    = 1;
@@ -185,9 +191,15 @@ namespace PeriDEAL
       Operators::DiffusionOperator<dim>   op;
       double                              horizon = 0;
       std::vector<unsigned int>           dirichlet_nodes; // owned
-      std::vector<unsigned int>           flux_nodes;      // owned
-      std::vector<bool>                   is_prescribed;   // per owned index
-      VectorType                          c, lc, s, rhs, row_sum;
+      /// Per Dirichlet node: the nearest point of the physical surface (the
+      /// inner face of the layer) and, for mirror layers, the node of the
+      /// set at the mirror image.
+      std::vector<Point<dim>>   surface_points;
+      std::vector<unsigned int> mirror_nodes;
+      std::vector<unsigned int> mirror_level;
+      std::vector<unsigned int> flux_nodes;    // owned
+      std::vector<bool>         is_prescribed; // per owned index
+      VectorType                c, lc, s, rhs, row_sum;
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    laplacian;
       std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
       double       time = 0, dt = 0, dt_bound = 0, radius_estimate = 0;
