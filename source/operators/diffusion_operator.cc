@@ -100,6 +100,27 @@ namespace PeriDEAL
               stencil_sum += mu;
             }
         }
+      // Bond slots and conductances of the owned nodes that do not have the
+      // stencil's neighbourhood (those that do are read off the stencil).
+      stored_first.assign(nodes->n_owned() + 1, 0);
+      stored_bonds.clear();
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          if (!(use_lattice && lists->has_full_stencil(i)))
+            {
+              const Point<dim> &x = (*nodes)[i].location;
+              for_each_bond(
+                i,
+                [&](const unsigned int, const unsigned int j, const double w) {
+                  stored_bonds.push_back(
+                    {static_cast<unsigned int>(slot[j]),
+                     0,
+                     kernel->conductance(x.distance((*nodes)[j].location)) * w,
+                     0.});
+                });
+            }
+          stored_first[i + 1] = stored_bonds.size();
+        }
       with_phases = false;
       n_phases    = 1;
       factor      = {1.};
@@ -222,30 +243,35 @@ namespace PeriDEAL
                   continue;
                 }
             }
-          const Point<dim> &x   = (*nodes)[i].location;
-          double            sum = 0, geometric = 0;
-          for_each_bond(
-            i,
-            [&](const unsigned int k, const unsigned int j, const double w) {
-              if (bond_state != nullptr && bond_state->is_broken(i, k))
-                return;
-              const double mu =
-                kernel->conductance(x.distance((*nodes)[j].location)) * w;
-              geometric += mu;
-              const unsigned char q = phase_slot[slot[j]];
-              const double        f = factor[p * n_phases + q];
-              const double r = rate.empty() ? 0. : rate[p * n_phases + q];
-              if (f == 0 && r == 0)
-                return;
-              unsigned char gated = 0;
-              if (with_phases && p != q && (p == 0 || q == 0) &&
-                  std::isfinite(gate))
-                gated = p == 0 ? 1 : 2;
-              any_special = any_special || gated != 0 || r != 0;
-              list_bonds.push_back(
-                {static_cast<unsigned int>(slot[j]), gated, f * mu, r * mu});
-              sum += f * mu;
-            });
+          double     sum = 0, geometric = 0;
+          const auto add = [&](const unsigned int k,
+                               const std::size_t  slot_j,
+                               const double       mu) {
+            if (bond_state != nullptr && bond_state->is_broken(i, k))
+              return;
+            geometric += mu;
+            const unsigned char q = phase_slot[slot_j];
+            const double        f = factor[p * n_phases + q];
+            const double        r = rate.empty() ? 0. : rate[p * n_phases + q];
+            if (f == 0 && r == 0)
+              return;
+            unsigned char gated = 0;
+            if (with_phases && p != q && (p == 0 || q == 0) &&
+                std::isfinite(gate))
+              gated = p == 0 ? 1 : 2;
+            any_special = any_special || gated != 0 || r != 0;
+            list_bonds.push_back(
+              {static_cast<unsigned int>(slot_j), gated, f * mu, r * mu});
+            sum += f * mu;
+          };
+          if (use_lattice && lists->has_full_stencil(i))
+            for (unsigned int k = 0; k < stencil_mu.size(); ++k)
+              add(k, slot[i] + stencil_offset[k], stencil_mu[k]);
+          else
+            for (std::size_t b = stored_first[i]; b < stored_first[i + 1]; ++b)
+              add(b - stored_first[i],
+                  stored_bonds[b].slot,
+                  stored_bonds[b].mu);
           largest_geometric_sum = std::max(largest_geometric_sum, geometric);
           list_nodes.push_back(i);
           list_first.push_back(list_bonds.size());
@@ -492,6 +518,8 @@ namespace PeriDEAL
              list_first.capacity() * sizeof(std::size_t) +
              list_bonds.capacity() * sizeof(ListBond) +
              list_sum.capacity() * sizeof(double) +
+             stored_first.capacity() * sizeof(std::size_t) +
+             stored_bonds.capacity() * sizeof(ListBond) +
              zero_slots.capacity() * sizeof(std::size_t) +
              phase_slot.capacity() +
              (c_slot.memory_consumption() + r_slot.memory_consumption());

@@ -220,8 +220,14 @@ namespace PeriDEAL
       bool                       with_phases = false, any_special = false;
       double                     largest_geometric_sum = 0;
 
-      std::vector<Chunk>        chunks;
-      std::vector<std::size_t>  zero_slots;
+      std::vector<Chunk>       chunks;
+      std::vector<std::size_t> zero_slots;
+      // Owned nodes off the shared stencil's neighbourhood (a stored list,
+      // or any node off a lattice): the slot and conductance of each bond,
+      // in bond order, computed once, so that re-sorting after phase
+      // changes or broken bonds evaluates no kernel and looks nothing up.
+      std::vector<std::size_t>  stored_first; // per owned node, size + 1
+      std::vector<ListBond>     stored_bonds;
       std::vector<unsigned int> list_nodes;
       std::vector<std::size_t>  list_first; // per list node, size + 1
       std::vector<ListBond>     list_bonds;
