@@ -20,27 +20,6 @@ namespace PeriDEAL
     {
       const char *const component_names = "x|y|z";
 
-      std::vector<types::boundary_id>
-      parse_ids(const std::string &text)
-      {
-        std::vector<types::boundary_id> ids;
-        for (const int id :
-             Utilities::string_to_int(Utilities::split_string_list(text)))
-          ids.push_back(static_cast<types::boundary_id>(id));
-        std::sort(ids.begin(), ids.end());
-        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-        return ids;
-      }
-
-      std::string
-      ids_to_string(const std::vector<types::boundary_id> &ids)
-      {
-        std::string s;
-        for (const auto id : ids)
-          s += (s.empty() ? "" : ", ") + std::to_string(id);
-        return s;
-      }
-
       // A vector function in the subsection @p name: checks the number of
       // components before deal.II's parser does, to name the entry.
       template <int dim>
@@ -166,8 +145,8 @@ namespace PeriDEAL
     void
     BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
     {
-      dirichlet_ids = parse_ids(prm.get("Dirichlet boundary ids"));
-      traction_ids  = parse_ids(prm.get("Traction boundary ids"));
+      dirichlet_ids = parse_boundary_ids(prm.get("Dirichlet boundary ids"));
+      traction_ids  = parse_boundary_ids(prm.get("Traction boundary ids"));
       for (const auto id : traction_ids)
         AssertThrow(std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) ==
                       dirichlet_ids.end(),
@@ -226,20 +205,14 @@ namespace PeriDEAL
     BoundaryConditions<dim>::check_boundary_ids(
       const Triangulation<dim> &triangulation) const
     {
-      // Every id named in the input must exist in the mesh.
-      const auto mesh_ids = triangulation.get_boundary_ids();
       for (const auto &[ids, entry] :
            {std::make_pair(&dirichlet_ids, "Dirichlet boundary ids"),
             std::make_pair(&traction_ids, "Traction boundary ids")})
-        for (const auto id : *ids)
-          AssertThrow(
-            std::find(mesh_ids.begin(), mesh_ids.end(), id) != mesh_ids.end(),
-            ExcInvalidInput(std::string("Boundary conditions/") + entry,
-                            ids_to_string(*ids),
-                            "boundary id " + std::to_string(id) +
-                              " does not occur in the mesh, "
-                              "whose boundary ids are " +
-                              ids_to_string(mesh_ids)));
+        Boundary::check_boundary_ids(triangulation,
+                                     *ids,
+                                     std::string("Boundary conditions/") +
+                                       entry,
+                                     boundary_ids_to_string(*ids));
     }
 
 

@@ -4,6 +4,7 @@
 
 #include <deal.II/numerics/rtree.h>
 
+#include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_layers.h>
 
 #include <algorithm>
@@ -13,6 +14,61 @@ namespace PeriDEAL
 {
   namespace Boundary
   {
+    std::vector<types::boundary_id>
+    parse_boundary_ids(const std::string &text)
+    {
+      std::vector<types::boundary_id> ids;
+      for (const int id :
+           Utilities::string_to_int(Utilities::split_string_list(text)))
+        ids.push_back(static_cast<types::boundary_id>(id));
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      return ids;
+    }
+
+
+    std::string
+    boundary_ids_to_string(const std::vector<types::boundary_id> &ids)
+    {
+      std::string s;
+      for (const auto id : ids)
+        s += (s.empty() ? "" : ", ") + std::to_string(id);
+      return s;
+    }
+
+
+    template <int dim>
+    void
+    check_boundary_ids(const Triangulation<dim>              &triangulation,
+                       const std::vector<types::boundary_id> &ids,
+                       const std::string                     &entry,
+                       const std::string                     &text)
+    {
+      const auto mesh_ids = triangulation.get_boundary_ids();
+      for (const auto id : ids)
+        AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
+                      mesh_ids.end(),
+                    ExcInvalidInput(entry,
+                                    text,
+                                    "boundary id " + std::to_string(id) +
+                                      " does not occur in the mesh, whose "
+                                      "boundary ids are " +
+                                      boundary_ids_to_string(mesh_ids)));
+    }
+
+
+    template void
+    check_boundary_ids(const Triangulation<2> &,
+                       const std::vector<types::boundary_id> &,
+                       const std::string &,
+                       const std::string &);
+    template void
+    check_boundary_ids(const Triangulation<3> &,
+                       const std::vector<types::boundary_id> &,
+                       const std::string &,
+                       const std::string &);
+
+
     template <int dim>
     BoundaryLayers<dim>::BoundaryLayers(
       const Triangulation<dim>              &triangulation,

@@ -418,7 +418,8 @@ namespace PeriDEAL
         configure_operator(setup);
       if (with_damage && record)
         update_damage(setup, c);
-      c.zero_out_ghost_values();
+      // The ghost values stay: they are those of this state, which the
+      // next step's evaluation needs (no second exchange).
     }
 
 

@@ -24,27 +24,7 @@ namespace PeriDEAL
   {
     namespace
     {
-      std::string
-      to_string(const double x)
-      {
-        std::ostringstream s;
-        s << std::setprecision(6) << x;
-        return s.str();
-      }
-
       const std::string section = "diffusion";
-
-      std::vector<types::boundary_id>
-      parse_ids(const std::string &text)
-      {
-        std::vector<types::boundary_id> ids;
-        for (const int id :
-             Utilities::string_to_int(Utilities::split_string_list(text)))
-          ids.push_back(static_cast<types::boundary_id>(id));
-        std::sort(ids.begin(), ids.end());
-        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-        return ids;
-      }
     } // namespace
 
 
@@ -250,10 +230,10 @@ namespace PeriDEAL
       parse_function("Analytical concentration", analytical);
       compare = prm.get_bool("Compare with analytical solution");
 
-      dirichlet_ids_text       = prm.get("Dirichlet boundary ids");
-      flux_ids_text            = prm.get("Flux boundary ids");
-      dirichlet_ids            = parse_ids(dirichlet_ids_text);
-      flux_ids                 = parse_ids(flux_ids_text);
+      dirichlet_ids_text = prm.get("Dirichlet boundary ids");
+      flux_ids_text      = prm.get("Flux boundary ids");
+      dirichlet_ids      = Boundary::parse_boundary_ids(dirichlet_ids_text);
+      flux_ids           = Boundary::parse_boundary_ids(flux_ids_text);
       dirichlet_thickness_text = prm.get("Dirichlet layer thickness");
       layer_values             = prm.get("Dirichlet layer values");
       AssertThrow(layer_values != "mirror" || stepping == "explicit",
@@ -440,9 +420,8 @@ namespace PeriDEAL
 
       // Layers: Dirichlet values and flux sources, each layer must hold a
       // node.
-      const auto &tria     = simulator.get_dof_handler().get_triangulation();
-      const auto  mesh_ids = tria.get_boundary_ids();
-      const auto  layers   = [&](const std::vector<types::boundary_id> &ids,
+      const auto &tria   = simulator.get_dof_handler().get_triangulation();
+      const auto  layers = [&](const std::vector<types::boundary_id> &ids,
                               const std::string                     &ids_entry,
                               const std::string                     &ids_text,
                               const double                           thickness,
@@ -451,13 +430,10 @@ namespace PeriDEAL
         std::vector<unsigned int> owned;
         if (ids.empty())
           return owned;
-        for (const auto id : ids)
-          AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
-                        mesh_ids.end(),
-                      ExcInvalidInput(section + "/" + ids_entry,
-                                      ids_text,
-                                      "boundary id " + std::to_string(id) +
-                                        " does not occur in the mesh"));
+        Boundary::check_boundary_ids(tria,
+                                     ids,
+                                     section + "/" + ids_entry,
+                                     ids_text);
         std::vector<unsigned int> n_in_layer;
         const auto                layer =
           Boundary::BoundaryLayers<dim>(tria, ids).layer_of_nodes(nodes,
@@ -471,7 +447,7 @@ namespace PeriDEAL
                                       "the layer of boundary id " +
                                         std::to_string(ids[k]) +
                                         " holds no node centre; use a layer "
-                                           "of at least half a cell"));
+                                         "of at least half a cell"));
         for (unsigned int i = 0; i < nodes.n_owned(); ++i)
           if (layer[i] != numbers::invalid_unsigned_int)
             owned.push_back(i);
@@ -540,9 +516,9 @@ namespace PeriDEAL
         AssertThrow(given_time_step <= dt_bound || allow_unstable,
                     ExcInvalidInput(
                       section + "/Time step",
-                      to_string(given_time_step),
+                      format_number(given_time_step),
                       "forward Euler is stable only up to " +
-                        to_string(dt_bound) +
+                        format_number(dt_bound) +
                         (limited_by_model ?
                            " (the limit of the model '" + model_name + "')" :
                            std::string(" (2 / Gershgorin's bound of the "
@@ -710,7 +686,10 @@ namespace PeriDEAL
     {
       // C^{n+1} = C^n + dt (L C^n + S^n) (paper Eq. 31); prescribed values
       // at t^{n+1}.
-      c.update_ghost_values();
+      // A diffusion model may have left the ghost values of this state up
+      // to date (corrosion exchanges them after each step): not twice.
+      if (!c.has_ghost_elements())
+        c.update_ghost_values();
       op.apply(c, lc);
       evaluate_source(time, s);
       c.zero_out_ghost_values();
@@ -841,10 +820,10 @@ namespace PeriDEAL
                       ExcMessage(
                         "The linear solve of step " +
                         std::to_string(step_number + 1) + " (t = " +
-                        to_string(time) + ") did not converge: residual " +
-                        to_string(e.last_residual) + " after " +
+                        format_number(time) + ") did not converge: residual " +
+                        format_number(e.last_residual) + " after " +
                         std::to_string(e.last_step) + " iterations, " +
-                        "target " + to_string(control.tolerance()) +
+                        "target " + format_number(control.tolerance()) +
                         ". Raise 'diffusion/Maximum iterations', use "
                         "'Preconditioner = local laplacian', or a shorter "
                         "'Time step'. The output written before is "

@@ -234,14 +234,8 @@ namespace PeriDEAL
       no_fail_boxes =
         Discretization::parse_boxes<dim>(no_fail_text,
                                          "explicit dynamics/No-fail boxes");
-      no_fail_ids_text = prm.get("No-fail boundary ids");
-      no_fail_ids.clear();
-      for (const int id : Utilities::string_to_int(
-             Utilities::split_string_list(no_fail_ids_text)))
-        no_fail_ids.push_back(static_cast<types::boundary_id>(id));
-      std::sort(no_fail_ids.begin(), no_fail_ids.end());
-      no_fail_ids.erase(std::unique(no_fail_ids.begin(), no_fail_ids.end()),
-                        no_fail_ids.end());
+      no_fail_ids_text       = prm.get("No-fail boundary ids");
+      no_fail_ids            = Boundary::parse_boundary_ids(no_fail_ids_text);
       no_fail_thickness_text = prm.get("No-fail layer thickness");
       no_fail_thickness      = prm.get_double("No-fail layer thickness");
       AssertThrow(no_fail_ids.empty() || no_fail_thickness > 0,
@@ -376,16 +370,11 @@ namespace PeriDEAL
           critical[i] = std::numeric_limits<double>::infinity();
       if (!no_fail_ids.empty())
         {
-          const auto mesh_ids =
-            simulator.get_dof_handler().get_triangulation().get_boundary_ids();
-          for (const auto id : no_fail_ids)
-            AssertThrow(std::find(mesh_ids.begin(), mesh_ids.end(), id) !=
-                          mesh_ids.end(),
-                        ExcInvalidInput("explicit dynamics/No-fail boundary "
-                                        "ids",
-                                        no_fail_ids_text,
-                                        "boundary id " + std::to_string(id) +
-                                          " does not occur in the mesh"));
+          Boundary::check_boundary_ids(
+            simulator.get_dof_handler().get_triangulation(),
+            no_fail_ids,
+            "explicit dynamics/No-fail boundary ids",
+            no_fail_ids_text);
           std::vector<unsigned int> n_in_layer;
           const auto                layer =
             Boundary::BoundaryLayers<dim>(

@@ -8,6 +8,7 @@
 
 #include <perideal/discretization/node_set.h>
 
+#include <string>
 #include <vector>
 
 namespace PeriDEAL
@@ -27,6 +28,27 @@ namespace PeriDEAL
      * R-tree per id, so that the answer for a node does not depend on the
      * partition.
      */
+    /// Boundary ids from a comma-separated list, sorted, without repeats.
+    std::vector<types::boundary_id>
+    parse_boundary_ids(const std::string &text);
+
+    /// "0, 2, 3": the ids for a message.
+    std::string
+    boundary_ids_to_string(const std::vector<types::boundary_id> &ids);
+
+    /**
+     * Throw ExcInvalidInput naming @p entry (with its value @p text) if one
+     * of @p ids does not occur in @p triangulation. The mesh's ids are the
+     * same on every process (Triangulation::get_boundary_ids()), so all
+     * processes throw together.
+     */
+    template <int dim>
+    void
+    check_boundary_ids(const Triangulation<dim>              &triangulation,
+                       const std::vector<types::boundary_id> &ids,
+                       const std::string                     &entry,
+                       const std::string                     &text);
+
     template <int dim>
     class BoundaryLayers
     {

@@ -73,7 +73,10 @@ namespace PeriDEAL
 
       /**
        * After each time step, with the owned values of @p c at @p time;
-       * @p record: a history row or an output follows. Collective.
+       * @p record: a history row or an output follows. Collective. A model
+       * that exchanges the ghost values may leave them valid (they are
+       * then reused by the next step) but must not change owned values
+       * afterwards without clearing them.
        */
       virtual void
       after_step(const DiffusionSetup<dim> &setup,
