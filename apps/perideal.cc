@@ -47,9 +47,9 @@ namespace
   print_usage(std::ostream &out)
   {
     out << "Usage: perideal [--threads N] <input.prm>\n"
-           "       perideal --print-parameters [2|3]\n"
+           "       perideal --print-parameters [1|2|3]\n"
            "       perideal --help\n\n"
-           "Runs the quasi-static peridynamic problem described by the\n"
+           "Runs the peridynamic problem described by the\n"
            "deal.II parameter file <input.prm> (run it under mpirun for\n"
            "several MPI processes). --print-parameters prints every entry,\n"
            "with its default, allowed values and help text, for 3D (or the\n"
@@ -65,9 +65,22 @@ namespace
   read_dimension(const std::string &file)
   {
     ParameterHandler prm;
-    prm.declare_entry("Dimension", "3", Patterns::Integer(2, 3));
+    prm.declare_entry("Dimension", "3", Patterns::Integer(1, 3));
+    prm.declare_entry("Problem type", "", Patterns::Anything());
     prm.parse_input(file, "", /*skip_undefined*/ true);
-    return prm.get_integer("Dimension");
+    const unsigned int dim = prm.get_integer("Dimension");
+    // 1D has fewer problem types than 2D and 3D: say so, rather than let
+    // the full parse report only the pattern.
+    const std::string problem = prm.get("Problem type");
+    if (dim == 1 && !problem.empty() &&
+        !PeriDEAL::Problems::ProblemTypeRegistry<1>::is_registered(problem))
+      throw InputError(
+        "Invalid value '" + problem +
+        "' for the parameter 'Problem type': 1D runs ('Dimension = 1') "
+        "offer only " +
+        PeriDEAL::Problems::ProblemTypeRegistry<1>::pattern_string() +
+        "; set 'Dimension = 2' or 3, or choose a 1D problem type.\n");
+    return dim;
   }
 
 
@@ -171,16 +184,19 @@ main(int argc, char **argv)
       if (first == "--print-parameters")
         {
           const std::string dim = argc > 2 ? argv[2] : "3";
-          if (dim != "2" && dim != "3")
+          if (dim != "1" && dim != "2" && dim != "3")
             {
               if (root)
-                std::cerr << "perideal: --print-parameters takes 2 or 3, not '"
-                          << dim << "'." << std::endl;
+                std::cerr
+                  << "perideal: --print-parameters takes 1, 2 or 3, not '"
+                  << dim << "'." << std::endl;
               return 1;
             }
           if (root)
             {
-              if (dim == "2")
+              if (dim == "1")
+                print_parameters<1>();
+              else if (dim == "2")
                 print_parameters<2>();
               else
                 print_parameters<3>();
@@ -202,7 +218,10 @@ main(int argc, char **argv)
         throw InputError("Cannot read the parameter file '" + first +
                          "': no such readable file. Give the path of a .prm "
                          "file; examples are in parameters/.\n");
-      if (read_dimension(first) == 2)
+      const unsigned int dim = read_dimension(first);
+      if (dim == 1)
+        run<1>(first);
+      else if (dim == 2)
         run<2>(first);
       else
         run<3>(first);

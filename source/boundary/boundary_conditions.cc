@@ -421,7 +421,10 @@ namespace PeriDEAL
                     normal[axis] = out[axis] > 0 ? 1 : -1;
                     const Tensor<1, dim> t =
                       traction_value(cell->face(f)->center(), normal);
-                    const double area = cell->face(f)->measure();
+                    // A 1D face is a point: the traction is a force.
+                    double area = 1;
+                    if constexpr (dim > 1)
+                      area = cell->face(f)->measure();
                     for (unsigned int k = 0; k < dofs.size(); ++k)
                       if (!constraints.is_constrained(dofs[k]))
                         load[dofs[k]] +=
@@ -460,6 +463,7 @@ namespace PeriDEAL
     }
 
 
+    template class BoundaryConditions<1>;
     template class BoundaryConditions<2>;
     template class BoundaryConditions<3>;
   } // namespace Boundary

@@ -58,6 +58,11 @@ namespace PeriDEAL
 
 
     template void
+    check_boundary_ids(const Triangulation<1> &,
+                       const std::vector<types::boundary_id> &,
+                       const std::string &,
+                       const std::string &);
+    template void
     check_boundary_ids(const Triangulation<2> &,
                        const std::vector<types::boundary_id> &,
                        const std::string &,
@@ -193,6 +198,7 @@ namespace PeriDEAL
     }
 
 
+    template class BoundaryLayers<1>;
     template class BoundaryLayers<2>;
     template class BoundaryLayers<3>;
   } // namespace Boundary

@@ -216,6 +216,7 @@ namespace PeriDEAL
     }
 
 
+    template class BondState<1>;
     template class BondState<2>;
     template class BondState<3>;
   } // namespace Discretization

@@ -327,6 +327,16 @@ namespace PeriDEAL
 
     template class PreCracks<2>;
     template class PreCracks<3>;
+    template std::vector<BoundingBox<1>>
+    parse_boxes<1>(const std::string &, const std::string &);
+    template std::vector<Point<1>>
+    parse_points<1>(const std::string &, const std::string &);
+    template std::vector<bool>
+    nodes_in_boxes<1>(const NodeSet<1> &,
+                      const std::vector<BoundingBox<1>> &,
+                      const std::string &,
+                      const std::string &,
+                      const std::string &);
     template std::vector<BoundingBox<2>>
     parse_boxes<2>(const std::string &, const std::string &);
     template std::vector<BoundingBox<3>>

@@ -168,6 +168,7 @@ namespace PeriDEAL
     }
 
 
+    template class Lattice<1>;
     template class Lattice<2>;
     template class Lattice<3>;
   } // namespace Discretization

@@ -335,6 +335,7 @@ namespace PeriDEAL
     }
 
 
+    template class NeighborList<1>;
     template class NeighborList<2>;
     template class NeighborList<3>;
   } // namespace Discretization

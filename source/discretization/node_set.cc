@@ -79,6 +79,8 @@ namespace PeriDEAL
     }
 
 
+    template BoundingBox<1>
+    cell_box(const CellAccessor<1> &);
     template BoundingBox<2>
     cell_box(const CellAccessor<2> &);
     template BoundingBox<3>
@@ -264,8 +266,11 @@ namespace PeriDEAL
     }
 
 
+    template class NodeSet<1>;
     template class NodeSet<2>;
     template class NodeSet<3>;
+    template double
+    box_distance_squared<1>(const BoundingBox<1> &, const BoundingBox<1> &);
     template double
     box_distance_squared<2>(const BoundingBox<2> &, const BoundingBox<2> &);
     template double

@@ -221,6 +221,7 @@ namespace PeriDEAL
     }
 
 
+    template class SolutionOutput<1>;
     template class SolutionOutput<2>;
     template class SolutionOutput<3>;
   } // namespace IO

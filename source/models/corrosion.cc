@@ -133,12 +133,13 @@ namespace PeriDEAL
                         Patterns::Anything(),
                         "A point 'x, y[, z]' on the initial metal surface; "
                         "empty: the origin.");
-      prm.declare_entry("Pit depth direction",
-                        "",
-                        Patterns::Anything(),
-                        "The direction 'x, y[, z]' into the metal along "
-                        "which the pit depth is measured; empty: -y (2D), "
-                        "-z (3D).");
+      prm.declare_entry(
+        "Pit depth direction",
+        "",
+        Patterns::Anything(),
+        "The direction 'x, y[, z]' into the metal along "
+        "which the pit depth is measured; empty: -x (1D), -y (2D), "
+        "-z (3D).");
     }
 
 
@@ -542,6 +543,7 @@ namespace PeriDEAL
     }
 
 
+    template class Corrosion<1>;
     template class Corrosion<2>;
     template class Corrosion<3>;
   } // namespace Models

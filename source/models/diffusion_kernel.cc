@@ -113,6 +113,11 @@ namespace PeriDEAL
 
 
     template void
+    DiffusionKernel::calibrate_on_lattice<1>(
+      const double,
+      const std::vector<std::array<int, 1>> &,
+      const std::vector<double> &);
+    template void
     DiffusionKernel::calibrate_on_lattice<2>(
       const double,
       const std::vector<std::array<int, 2>> &,

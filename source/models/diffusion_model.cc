@@ -97,10 +97,12 @@ namespace PeriDEAL
     } // namespace
 
 
+    template class DiffusionModel<1>;
     template class DiffusionModel<2>;
     template class DiffusionModel<3>;
   } // namespace Models
 
+  template class PluginRegistry<Models::DiffusionModel<1>>;
   template class PluginRegistry<Models::DiffusionModel<2>>;
   template class PluginRegistry<Models::DiffusionModel<3>>;
 } // namespace PeriDEAL

@@ -258,12 +258,14 @@ namespace PeriDEAL
     }
 
 
+    template class Model<1>;
     template class Model<2>;
     template class Model<3>;
     template class IsotropicModel<2>;
     template class IsotropicModel<3>;
   } // namespace Models
 
+  template class PluginRegistry<Models::Model<1>>;
   template class PluginRegistry<Models::Model<2>>;
   template class PluginRegistry<Models::Model<3>>;
 } // namespace PeriDEAL

@@ -526,6 +526,7 @@ namespace PeriDEAL
     }
 
 
+    template class DiffusionOperator<1>;
     template class DiffusionOperator<2>;
     template class DiffusionOperator<3>;
   } // namespace Operators

@@ -1142,12 +1142,13 @@ namespace PeriDEAL
     }
 
 
+    template class Diffusion<1>;
     template class Diffusion<2>;
     template class Diffusion<3>;
   } // namespace Problems
 } // namespace PeriDEAL
 
-PERIDEAL_REGISTER_PROBLEM_TYPE(
+PERIDEAL_REGISTER_PROBLEM_TYPE_1D_2D_3D(
   PeriDEAL::Problems::Diffusion,
   "diffusion",
   "Nonlocal (bond-based PD) diffusion: forward Euler within its stability "

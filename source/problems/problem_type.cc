@@ -52,10 +52,12 @@ namespace PeriDEAL
     }
 
 
+    template class ProblemType<1>;
     template class ProblemType<2>;
     template class ProblemType<3>;
   } // namespace Problems
 
+  template class PluginRegistry<Problems::ProblemType<1>>;
   template class PluginRegistry<Problems::ProblemType<2>>;
   template class PluginRegistry<Problems::ProblemType<3>>;
 } // namespace PeriDEAL

@@ -5,6 +5,9 @@
 
 #include <deal.II/fe/fe_dgq.h>
 
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/tria.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
@@ -87,6 +90,28 @@ namespace PeriDEAL
         s << std::setprecision(10) << value;
         return s.str();
       }
+
+
+      /**
+       * The mesh of a @p dim-dimensional run: p4est in 2D and 3D; in 1D,
+       * where p4est has none, a shared triangulation (every process holds
+       * the whole line) partitioned in z-order, which for a line is into
+       * contiguous pieces.
+       */
+      template <int dim>
+      std::unique_ptr<parallel::TriangulationBase<dim>>
+      make_triangulation(const MPI_Comm communicator)
+      {
+        if constexpr (dim == 1)
+          return std::make_unique<parallel::shared::Triangulation<1>>(
+            communicator,
+            Triangulation<1>::none,
+            false,
+            parallel::shared::Triangulation<1>::partition_zorder);
+        else
+          return std::make_unique<parallel::distributed::Triangulation<dim>>(
+            communicator);
+      }
     } // namespace
 
 
@@ -95,9 +120,9 @@ namespace PeriDEAL
       : communicator(communicator)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
       , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
-      , triangulation(communicator)
+      , triangulation(make_triangulation<dim>(communicator))
       , fe(FE_DGQ<dim>(0), dim)
-      , dof_handler(triangulation)
+      , dof_handler(*triangulation)
     {}
 
 
@@ -107,11 +132,15 @@ namespace PeriDEAL
     {
       prm.declare_entry("Dimension",
                         "3",
-                        Patterns::Integer(2, 3),
-                        "Space dimension of the problem: 2 or 3.");
+                        Patterns::Integer(1, 3),
+                        "Space dimension of the problem: 1, 2 or 3. 1D runs "
+                        "(a serial line, shared by the processes) have only "
+                        "the problem type 'diffusion'.");
       prm.declare_entry(
         "Problem type",
-        "quasi-static",
+        ProblemTypeRegistry<dim>::is_registered("quasi-static") ?
+          "quasi-static" :
+          ProblemTypeRegistry<dim>::names().front(),
         Patterns::Selection(ProblemTypeRegistry<dim>::pattern_string()),
         "What to solve on the PD nodes; the entries of each problem type "
         "are in the top-level subsection of the same name.");
@@ -207,12 +236,19 @@ namespace PeriDEAL
 
       prm.enter_subsection("Material model");
       {
+        // 1D has no material model (its runs are diffusion runs).
+        const bool has_models = !Models::ModelRegistry<dim>::names().empty();
         prm.declare_entry("Model",
-                          "linear peridynamic solid",
+                          has_models ? "linear peridynamic solid" : "none",
                           Patterns::Selection(
-                            Models::ModelRegistry<dim>::pattern_string()),
-                          "The PD material model; its constants are in the "
-                          "subsection of the same name.");
+                            has_models ?
+                              Models::ModelRegistry<dim>::pattern_string() :
+                              std::string("none")),
+                          has_models ?
+                            "The PD material model; its constants are in the "
+                            "subsection of the same name." :
+                            "1D runs have no material model: the only "
+                            "problem type in 1D is 'diffusion'.");
         Models::ModelRegistry<dim>::declare_parameters(prm);
       }
       prm.leave_subsection();
@@ -402,8 +438,14 @@ namespace PeriDEAL
 
       prm.enter_subsection("Material model");
       model_name = prm.get("Model");
-      model      = Models::ModelRegistry<dim>::create(model_name, prm);
+      if (model_name != "none")
+        model = Models::ModelRegistry<dim>::create(model_name, prm);
       prm.leave_subsection();
+      AssertThrow(model != nullptr || !problem->uses_material_model(),
+                  ExcInvalidInput("Material model/Model",
+                                  model_name,
+                                  "the problem type '" + problem_name +
+                                    "' needs a material model"));
 
       prm.enter_subsection("Boundary conditions");
       boundary_conditions.parse_parameters(prm);
@@ -472,7 +514,7 @@ namespace PeriDEAL
             std::max(1e-300,
                      (upper_corner[0] - lower_corner[0]) / subdivisions[0]);
       // Calibrated on the 28^3 LPS case (110 KB per node assembled, m = 3).
-      const double reach   = problem->couples_two_horizons(*model) ? 2 * m : m;
+      const double reach   = couples_two_horizons() ? 2 * m : m;
       const double coupled = dim == 3 ? 4. / 3. * M_PI * reach * reach * reach :
                                         M_PI * reach * reach;
       // (2D: 1 KB and 1.5 KB; the 2000^2 run took 9.5 GB with local
@@ -544,7 +586,7 @@ namespace PeriDEAL
       if (mesh_kind == "subdivided box")
         check_memory_estimate();
       if (mesh_kind == "subdivided box")
-        GridGenerator::subdivided_hyper_rectangle(triangulation,
+        GridGenerator::subdivided_hyper_rectangle(*triangulation,
                                                   subdivisions,
                                                   lower_corner,
                                                   upper_corner,
@@ -555,12 +597,12 @@ namespace PeriDEAL
           // neither the file nor the entry; every process reads the file, so
           // every process fails alike.
           GridIn<dim> grid_in;
-          grid_in.attach_triangulation(triangulation);
+          grid_in.attach_triangulation(*triangulation);
           std::string error;
           try
             {
               grid_in.read(mesh_file);
-              if (triangulation.n_global_active_cells() == 0)
+              if (triangulation->n_global_active_cells() == 0)
                 error = "it holds no cells";
             }
           catch (const ExceptionBase &exc)
@@ -586,7 +628,7 @@ namespace PeriDEAL
                 std::to_string(dim) +
                 "D cells ('Dimension = " + std::to_string(dim) + "')"));
         }
-      triangulation.refine_global(global_refinements);
+      triangulation->refine_global(global_refinements);
 
       // The smallest cell side and the extent of the body.
       h = std::numeric_limits<double>::max();
@@ -601,7 +643,7 @@ namespace PeriDEAL
       // that owns the cell, and all processes stop with its message.
       check_on_all_ranks(
         [&]() {
-          for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto &cell : triangulation->active_cell_iterators())
             if (cell->is_locally_owned())
               {
                 const BoundingBox<dim> box = Discretization::cell_box(*cell);
@@ -649,7 +691,7 @@ namespace PeriDEAL
       summary.n_ranks = Utilities::MPI::n_mpi_processes(communicator);
       pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
             << wall_clock.wall_time()
-            << " s] mesh: " << triangulation.n_global_active_cells()
+            << " s] mesh: " << triangulation->n_global_active_cells()
             << " cells, h = " << std::defaultfloat << std::setprecision(10) << h
             << ", horizon = " << horizon << " (m-ratio " << m_ratio << "), "
             << Utilities::MPI::n_mpi_processes(communicator)
@@ -664,17 +706,16 @@ namespace PeriDEAL
       TimerOutput::Scope scope(timer, "nodes and ghost exchange");
       dof_handler.distribute_dofs(fe);
       double diameter = 0;
-      for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto &cell : triangulation->active_cell_iterators())
         if (cell->is_locally_owned())
           diameter = std::max(diameter, cell->diameter());
       diameter = Utilities::MPI::max(diameter, communicator);
       // State-based forces of an owned node need the dilatations of its
       // neighbours, hence their neighbours: two horizons.
-      const double coupling_range = problem->couples_two_horizons(*model) ?
-                                      2 * (horizon + diameter) :
-                                      horizon + diameter;
+      const double coupling_range =
+        couples_two_horizons() ? 2 * (horizon + diameter) : horizon + diameter;
       nodes.reinit(dof_handler, coupling_range);
-      summary.n_nodes = triangulation.n_global_active_cells();
+      summary.n_nodes = triangulation->n_global_active_cells();
     }
 
 
@@ -687,7 +728,7 @@ namespace PeriDEAL
         neighbor_lists.reinit(nodes,
                               horizon,
                               *algorithm,
-                              problem->couples_two_horizons(*model),
+                              couples_two_horizons(),
                               store_full_lists);
       }
       summary.n_bonds =
@@ -911,10 +952,10 @@ namespace PeriDEAL
 
 
     template <int dim>
-    const parallel::distributed::Triangulation<dim> &
+    const parallel::TriangulationBase<dim> &
     Simulator<dim>::get_triangulation() const
     {
-      return triangulation;
+      return *triangulation;
     }
 
 
@@ -946,6 +987,9 @@ namespace PeriDEAL
     const Models::Model<dim> &
     Simulator<dim>::get_model() const
     {
+      AssertThrow(model != nullptr,
+                  ExcMessage("This run has no material model ('Material "
+                             "model/Model = none')."));
       return *model;
     }
 
@@ -1046,6 +1090,15 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    bool
+    Simulator<dim>::couples_two_horizons() const
+    {
+      return model != nullptr && problem->couples_two_horizons(*model);
+    }
+
+
+    template class Simulator<1>;
     template class Simulator<2>;
     template class Simulator<3>;
   } // namespace Problems

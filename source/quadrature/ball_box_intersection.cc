@@ -192,7 +192,8 @@ namespace PeriDEAL
           if (x[j] < x[i])
             std::swap(x[i], x[j]);
         };
-        order(0, 1);
+        if constexpr (dim >= 2)
+          order(0, 1);
         if constexpr (dim == 3)
           {
             order(1, 2);
@@ -209,7 +210,10 @@ namespace PeriDEAL
         // on sorted coordinates makes the result exactly symmetric, and lets
         // callers memoize it by sorted corner.
         sort_coordinates<dim>(corner);
-        if constexpr (dim == 2)
+        // 1D: the part of [0, R] beyond the corner.
+        if constexpr (dim == 1)
+          return std::max(R - corner[0], real(0));
+        else if constexpr (dim == 2)
           return corner_area(corner[0], corner[1], R);
         else
           return corner_volume(corner[0], corner[1], corner[2], R);
@@ -396,8 +400,9 @@ namespace PeriDEAL
           norm2 += static_cast<std::uint64_t>(t) * t;
         if (norm2 >= 4 * R2)
           return 0;
-        if (twice[1] < twice[0])
-          std::swap(twice[0], twice[1]);
+        if constexpr (dim >= 2)
+          if (twice[1] < twice[0])
+            std::swap(twice[0], twice[1]);
         if constexpr (dim == 3)
           {
             if (twice[2] < twice[1])
@@ -469,9 +474,15 @@ namespace PeriDEAL
 
 
     template double
+    ball_corner_measure(const Point<1> &, const double);
+    template double
     ball_corner_measure(const Point<2> &, const double);
     template double
     ball_corner_measure(const Point<3> &, const double);
+    template double
+    ball_box_intersection_measure(const Point<1> &,
+                                  const double,
+                                  const BoundingBox<1> &);
     template double
     ball_box_intersection_measure(const Point<2> &,
                                   const double,
@@ -480,6 +491,9 @@ namespace PeriDEAL
     ball_box_intersection_measure(const Point<3> &,
                                   const double,
                                   const BoundingBox<3> &);
+    template std::vector<double>
+    unit_cell_intersection_measures<1>(const std::vector<std::array<int, 1>> &,
+                                       const double);
     template std::vector<double>
     unit_cell_intersection_measures<2>(const std::vector<std::array<int, 2>> &,
                                        const double);

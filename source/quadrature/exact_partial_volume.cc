@@ -42,11 +42,17 @@ namespace PeriDEAL
     {}
 
 
+    template class ExactPartialVolume<1>;
     template class ExactPartialVolume<2>;
     template class ExactPartialVolume<3>;
   } // namespace Quadrature
 } // namespace PeriDEAL
 
+PERIDEAL_REGISTER_PARTIAL_VOLUME(
+  PeriDEAL::Quadrature::ExactPartialVolume,
+  1,
+  "exact",
+  "Exact length of the part of the cell within the horizon.")
 PERIDEAL_REGISTER_PARTIAL_VOLUME(
   PeriDEAL::Quadrature::ExactPartialVolume,
   2,

@@ -31,11 +31,17 @@ namespace PeriDEAL
     {}
 
 
+    template class FullPartialVolume<1>;
     template class FullPartialVolume<2>;
     template class FullPartialVolume<3>;
   } // namespace Quadrature
 } // namespace PeriDEAL
 
+PERIDEAL_REGISTER_PARTIAL_VOLUME(
+  PeriDEAL::Quadrature::FullPartialVolume,
+  1,
+  "full",
+  "Whole cell if its centre lies within the horizon, else nothing.")
 PERIDEAL_REGISTER_PARTIAL_VOLUME(
   PeriDEAL::Quadrature::FullPartialVolume,
   2,

@@ -57,14 +57,18 @@ namespace PeriDEAL
     }
 
 
+    template class PartialVolume<1>;
     template class PartialVolume<2>;
     template class PartialVolume<3>;
+    template BoundingBox<1>
+    unit_cell<1>(const std::array<int, 1> &);
     template BoundingBox<2>
     unit_cell<2>(const std::array<int, 2> &);
     template BoundingBox<3>
     unit_cell<3>(const std::array<int, 3> &);
   } // namespace Quadrature
 
+  template class PluginRegistry<Quadrature::PartialVolume<1>>;
   template class PluginRegistry<Quadrature::PartialVolume<2>>;
   template class PluginRegistry<Quadrature::PartialVolume<3>>;
 } // namespace PeriDEAL

@@ -199,6 +199,7 @@ namespace PeriDEAL
     }
 
 
+    template class UniformGridWeights<1>;
     template class UniformGridWeights<2>;
     template class UniformGridWeights<3>;
   } // namespace Quadrature

@@ -136,6 +136,12 @@ cp base.orig base.prm
 
 # A concentration that turns non-finite stops the run with the step and the
 # node named; what was written before stays complete.
+# 1D: only the problem types registered for 1D, and 1D points.
+expect_error 's/set Dimension = 2/set Dimension = 1/; s/set Problem type = diffusion/set Problem type = explicit dynamics/' \
+  "1D runs ('Dimension = 1') offer only diffusion" 2
+expect_error 's/set Dimension = 2/set Dimension = 1/' \
+  "Lower corner" 2
+
 for np in 1 2; do
   sed -e 's/set End time = 1e-3/set End time = 8e-3\n  set Time step = 1e-3\n  set Output every steps = 2\n  set History every steps = 2/' \
       -e 's/    set Function expression = 1/    set Function expression = t > 3e-3 ? 0\/0 : 1/' base.prm > nan.prm

@@ -115,6 +115,10 @@ namespace PeriDEAL
 
 /// Register the diffusion model @p Class (a template over dim) as @p name.
 #define PERIDEAL_REGISTER_DIFFUSION_MODEL(Class, name, description) \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::DiffusionModel<1>,    \
+                          Class<1>,                                 \
+                          name,                                     \
+                          description)                              \
   PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::DiffusionModel<2>,    \
                           Class<2>,                                 \
                           name,                                     \

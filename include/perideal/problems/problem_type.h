@@ -111,4 +111,15 @@ namespace PeriDEAL
                           name,                                  \
                           description)
 
+/**
+ * Register a problem type that also runs in 1D (on the shared line mesh of
+ * Simulator<1>), in addition to 2D and 3D.
+ */
+#define PERIDEAL_REGISTER_PROBLEM_TYPE_1D_2D_3D(Class, name, description) \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Problems::ProblemType<1>,           \
+                          Class<1>,                                       \
+                          name,                                           \
+                          description)                                    \
+  PERIDEAL_REGISTER_PROBLEM_TYPE(Class, name, description)
+
 #endif

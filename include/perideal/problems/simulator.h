@@ -6,7 +6,7 @@
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/distributed/tria.h>
+#include <deal.II/distributed/tria_base.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
@@ -159,7 +159,12 @@ namespace PeriDEAL
       TimerOutput &
       get_timer();
 
-      const parallel::distributed::Triangulation<dim> &
+      /**
+       * The mesh: a parallel::distributed::Triangulation (p4est) in 2D and
+       * 3D, a parallel::shared::Triangulation in 1D (p4est has no 1D; every
+       * process holds the whole line and owns a contiguous part of it).
+       */
+      const parallel::TriangulationBase<dim> &
       get_triangulation() const;
 
       const DoFHandler<dim> &
@@ -224,6 +229,11 @@ namespace PeriDEAL
       void
       check_memory_estimate() const;
 
+      /// Whether owned nodes couple to nodes two horizons away (a
+      /// state-based material model); false without a model.
+      bool
+      couples_two_horizons() const;
+
       void
       make_mesh();
 
@@ -265,13 +275,13 @@ namespace PeriDEAL
       IO::SolutionOutput<dim>                         output;
 
       // Discretisation.
-      parallel::distributed::Triangulation<dim> triangulation;
-      FESystem<dim>                             fe;
-      DoFHandler<dim>                           dof_handler;
-      double                                    h       = 0;
-      double                                    horizon = 0;
-      Discretization::NodeSet<dim>              nodes;
-      Discretization::NeighborList<dim>         neighbor_lists;
+      std::unique_ptr<parallel::TriangulationBase<dim>> triangulation;
+      FESystem<dim>                                     fe;
+      DoFHandler<dim>                                   dof_handler;
+      double                                            h       = 0;
+      double                                            horizon = 0;
+      Discretization::NodeSet<dim>                      nodes;
+      Discretization::NeighborList<dim>                 neighbor_lists;
 
       RunSummary summary;
     };

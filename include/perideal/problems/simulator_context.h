@@ -19,23 +19,23 @@ namespace PeriDEAL
       template <int dim>
       struct Context
       {
-        const MPI_Comm                                   communicator;
-        ConditionalOStream                              &pcout;
-        TimerOutput                                     &timer;
-        RunSummary                                      &summary;
-        const DoFHandler<dim>                           &dof_handler;
-        const parallel::distributed::Triangulation<dim> &triangulation;
-        const Discretization::NodeSet<dim>              &nodes;
-        const Discretization::NeighborList<dim>         &neighbor_lists;
-        const Models::Model<dim>                        &model;
-        const double                                     horizon;
-        const Boundary::BoundaryConditions<dim>         &boundary_conditions;
-        const Boundary::BoundaryTreatment               &treatment;
-        const std::string                               &treatment_name;
-        const Solvers::LinearSolver                     &linear_solver;
-        const Functions::ParsedFunction<dim>            *analytical_solution;
-        const IO::SolutionOutput<dim>                   &output;
-        const std::string                               &node_data_file;
+        const MPI_Comm                           communicator;
+        ConditionalOStream                      &pcout;
+        TimerOutput                             &timer;
+        RunSummary                              &summary;
+        const DoFHandler<dim>                   &dof_handler;
+        const parallel::TriangulationBase<dim>  &triangulation;
+        const Discretization::NodeSet<dim>      &nodes;
+        const Discretization::NeighborList<dim> &neighbor_lists;
+        const Models::Model<dim>                &model;
+        const double                             horizon;
+        const Boundary::BoundaryConditions<dim> &boundary_conditions;
+        const Boundary::BoundaryTreatment       &treatment;
+        const std::string                       &treatment_name;
+        const Solvers::LinearSolver             &linear_solver;
+        const Functions::ParsedFunction<dim>    *analytical_solution;
+        const IO::SolutionOutput<dim>           &output;
+        const std::string                       &node_data_file;
       };
 
       /// The Context of @p s.
