@@ -128,6 +128,19 @@ namespace PeriDEAL
                         "1",
                         Patterns::Double(),
                         "Thickness of the flux layers, in horizons.");
+      prm.declare_entry(
+        "Flux layer values",
+        "source",
+        Patterns::Selection("source|mirror"),
+        "How a flux enters. source: the layer is part of the body and "
+        "'Boundary flux' q enters as the source q / thickness in its nodes. "
+        "mirror: the layer is a fictitious layer outside the body (the "
+        "physical surface is its inner face, as for Dirichlet layers) whose "
+        "values are C(x_m) + |x - x_m| q(x_b) / K, the even reflection of "
+        "the mirror node x_m through the surface point x_b with the normal "
+        "gradient the flux gives (zero flux: a plain even reflection); "
+        "second order for a smooth solution; explicit time stepping, "
+        "uniform grids.");
       prm.enter_subsection("Boundary flux");
       Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
       prm.leave_subsection();
@@ -243,6 +256,13 @@ namespace PeriDEAL
                                   "explicit' (their values depend on the "
                                   "solution); use 'surface value' or "
                                   "'function'"));
+      flux_values = prm.get("Flux layer values");
+      AssertThrow(flux_values != "mirror" || stepping == "explicit",
+                  ExcInvalidInput(section + "/Flux layer values",
+                                  flux_values,
+                                  "mirror layers need 'Time stepping = "
+                                  "explicit' (their values depend on the "
+                                  "solution); use 'source'"));
       flux_thickness_text = prm.get("Flux layer thickness");
       dirichlet_thickness = prm.get_double("Dirichlet layer thickness");
       flux_thickness      = prm.get_double("Flux layer thickness");
@@ -311,7 +331,7 @@ namespace PeriDEAL
           c.local_element(op.vector_index(i)) =
             initial->value(simulator.get_nodes()[i].location);
         model->initialize(model_setup(simulator), c);
-        apply_dirichlet(0, c);
+        apply_layer_values(0, c);
       }
       if (stepping == "steady state")
         {
@@ -418,57 +438,7 @@ namespace PeriDEAL
       // affine).
       radius_estimate = op.estimate_spectral_radius(60);
 
-      // Layers: Dirichlet values and flux sources, each layer must hold a
-      // node.
-      const auto &tria   = simulator.get_dof_handler().get_triangulation();
-      const auto  layers = [&](const std::vector<types::boundary_id> &ids,
-                              const std::string                     &ids_entry,
-                              const std::string                     &ids_text,
-                              const double                           thickness,
-                              const std::string &thickness_entry,
-                              const std::string &thickness_text) {
-        std::vector<unsigned int> owned;
-        if (ids.empty())
-          return owned;
-        Boundary::check_boundary_ids(tria,
-                                     ids,
-                                     section + "/" + ids_entry,
-                                     ids_text);
-        std::vector<unsigned int> n_in_layer;
-        const auto                layer =
-          Boundary::BoundaryLayers<dim>(tria, ids).layer_of_nodes(nodes,
-                                                                  thickness *
-                                                                    horizon,
-                                                                  &n_in_layer);
-        for (unsigned int k = 0; k < ids.size(); ++k)
-          AssertThrow(n_in_layer[k] > 0,
-                      ExcInvalidInput(section + "/" + thickness_entry,
-                                      thickness_text,
-                                      "the layer of boundary id " +
-                                        std::to_string(ids[k]) +
-                                        " holds no node centre; use a layer "
-                                         "of at least half a cell"));
-        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-          if (layer[i] != numbers::invalid_unsigned_int)
-            owned.push_back(i);
-        return owned;
-      };
-      dirichlet_nodes = layers(dirichlet_ids,
-                               "Dirichlet boundary ids",
-                               dirichlet_ids_text,
-                               dirichlet_thickness,
-                               "Dirichlet layer thickness",
-                               dirichlet_thickness_text);
-      flux_nodes      = layers(flux_ids,
-                          "Flux boundary ids",
-                          flux_ids_text,
-                          flux_thickness,
-                          "Flux layer thickness",
-                          flux_thickness_text);
-      setup_layer_values(simulator);
-      is_prescribed.assign(c.locally_owned_size(), false);
-      for (const auto i : dirichlet_nodes)
-        is_prescribed[op.vector_index(i)] = true;
+      setup_layers(simulator);
 
       const unsigned int n_stencil =
         Utilities::MPI::sum(op.n_stencil_nodes(), comm);
@@ -543,145 +513,6 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    Diffusion<dim>::setup_layer_values(Simulator<dim> &simulator)
-    {
-      surface_points.clear();
-      mirror_nodes.clear();
-      mirror_level.clear();
-      if (layer_values == "function" || dirichlet_ids.empty())
-        return;
-      const auto    &tria  = simulator.get_dof_handler().get_triangulation();
-      const MPI_Comm comm  = simulator.get_communicator();
-      const double   l     = dirichlet_thickness * horizon;
-      const auto     faces = Boundary::BoundaryLayers<dim>(tria, dirichlet_ids)
-                           .nearest_face_points(*nodes, l);
-      const auto &lattice = simulator.get_neighbor_lists().lattice();
-      const auto  n       = nodes->size();
-      // For every layer node of the set (ghosts too: mirror chains pass
-      // through them): the surface point x_b = p + l (x - p) / |x - p|,
-      // from the nearest point p of the outer face inwards through the
-      // layer, and the node at the mirror image 2 x_b - x.
-      std::vector<Point<dim>> x_b(n);
-      std::vector<int>        mirror(n, -1);
-      std::vector<bool>       in_layer(n, false);
-      unsigned int            missing = 0;
-      for (unsigned int i = 0; i < n; ++i)
-        in_layer[i] = std::isfinite(faces[i][0]);
-      for (unsigned int i = 0; i < n; ++i)
-        if (in_layer[i])
-          {
-            const Point<dim>    &x      = (*nodes)[i].location;
-            const Tensor<1, dim> inward = x - faces[i];
-            x_b[i]                      = faces[i] + l / inward.norm() * inward;
-            if (layer_values != "mirror")
-              continue;
-            if (lattice.is_uniform())
-              {
-                auto y = lattice.coordinates(i);
-                for (unsigned int d = 0; d < dim; ++d)
-                  y[d] +=
-                    std::llround(2 * (x_b[i][d] - x[d]) / lattice.spacing());
-                mirror[i] = lattice.node_at(y);
-              }
-            if (mirror[i] >= 0 &&
-                (*nodes)[mirror[i]].location.distance(
-                  Point<dim>(2 * x_b[i] - x)) > 1e-6 * lattice.spacing())
-              mirror[i] = -1;
-          }
-      // Levels: 1 for a mirror image among the free nodes, 1 + its level
-      // for one in another layer (near edges and corners the image across
-      // the nearest face lies in the next face's layer: reflected again).
-      std::vector<unsigned int> level(n, 0);
-      for (unsigned int sweep = 0; sweep <= dim; ++sweep)
-        for (unsigned int i = 0; i < n; ++i)
-          if (in_layer[i] && mirror[i] >= 0)
-            level[i] = in_layer[mirror[i]] ?
-                         (level[mirror[i]] > 0 ? level[mirror[i]] + 1 : 0) :
-                         1;
-      for (const auto i : dirichlet_nodes)
-        {
-          surface_points.push_back(x_b[i]);
-          if (layer_values != "mirror")
-            continue;
-          if (mirror[i] < 0 || level[i] == 0 || level[i] > dim)
-            ++missing;
-          mirror_nodes.push_back(
-            mirror[i] < 0 ? 0u : static_cast<unsigned int>(mirror[i]));
-          mirror_level.push_back(level[i]);
-        }
-      AssertThrow(Utilities::MPI::sum(missing, comm) == 0,
-                  ExcInvalidInput(section + "/Dirichlet layer values",
-                                  layer_values,
-                                  "a layer node has no node at its mirror "
-                                  "image (mirror layers need a uniform grid "
-                                  "whose layers end at cell faces, and a "
-                                  "body thicker than two layers); use "
-                                  "'surface value'"));
-    }
-
-
-    template <int dim>
-    void
-    Diffusion<dim>::apply_dirichlet(const double t, VectorType &x) const
-    {
-      if (dirichlet_nodes.empty())
-        return;
-      boundary_value->set_time(t);
-      if (layer_values == "function")
-        for (const auto i : dirichlet_nodes)
-          x.local_element(op.vector_index(i)) =
-            boundary_value->value((*nodes)[i].location);
-      else if (layer_values == "surface value")
-        for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
-          x.local_element(op.vector_index(dirichlet_nodes[k])) =
-            boundary_value->value(surface_points[k]);
-      else
-        {
-          // Mirror values read the free nodes (level 1) or layer nodes of
-          // a lower level (edges, corners), some of them off-process: one
-          // ghost update per level.
-          for (unsigned int level = 1; level <= dim; ++level)
-            {
-              x.update_ghost_values();
-              for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
-                if (mirror_level[k] == level)
-                  x.local_element(op.vector_index(dirichlet_nodes[k])) =
-                    2 * boundary_value->value(surface_points[k]) -
-                    x.local_element(op.vector_index(mirror_nodes[k]));
-              x.zero_out_ghost_values();
-            }
-        }
-    }
-
-
-    template <int dim>
-    void
-    Diffusion<dim>::evaluate_source(const double t, VectorType &x) const
-    {
-      x = 0;
-      if (with_source)
-        {
-          source->set_time(t);
-          for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-            x.local_element(op.vector_index(i)) =
-              source->value((*nodes)[i].location);
-        }
-      if (with_flux)
-        {
-          // A flux q through the surface enters as the source q / l spread
-          // over the layer of thickness l (its integral over the layer is
-          // q times the area).
-          boundary_flux->set_time(t);
-          const double inverse = 1. / (flux_thickness * horizon);
-          for (const auto i : flux_nodes)
-            x.local_element(op.vector_index(i)) +=
-              inverse * boundary_flux->value((*nodes)[i].location);
-        }
-    }
-
-
-    template <int dim>
-    void
     Diffusion<dim>::explicit_step(Simulator<dim> &)
     {
       // C^{n+1} = C^n + dt (L C^n + S^n) (paper Eq. 31); prescribed values
@@ -699,7 +530,7 @@ namespace PeriDEAL
           c.local_element(k) += dt * (lc.local_element(k) + s.local_element(k));
       ++step_number;
       time = step_number == n_steps ? end_time : step_number * dt;
-      apply_dirichlet(time, c);
+      apply_layer_values(time, c);
     }
 
 
@@ -856,7 +687,7 @@ namespace PeriDEAL
       time = step_number == n_steps ? end_time : step_number * dt;
       evaluate_source(time, s);
       rhs.add(theta * dt, s);
-      apply_dirichlet(time, c);
+      apply_layer_values(time, c);
       last_iterations = solve(simulator, 1, theta * dt, rhs, c);
       total_iterations += last_iterations;
     }
@@ -885,7 +716,7 @@ namespace PeriDEAL
       // Whether each node of the set (ghosts too) is prescribed.
       VectorType flag;
       op.initialize_vector(flag);
-      for (const auto i : dirichlet_nodes)
+      for (const auto i : prescribed_nodes)
         flag.local_element(op.vector_index(i)) = 1;
       flag.update_ghost_values();
       const auto prescribed = [&](const unsigned int i) {

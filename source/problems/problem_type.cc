@@ -46,9 +46,9 @@ namespace PeriDEAL
     template <int dim>
     bool
     ProblemType<dim>::couples_two_horizons(
-      const Models::Model<dim> &model) const
+      const Models::Model<dim> *model) const
     {
-      return model.is_state_based();
+      return model != nullptr && model->is_state_based();
     }
 
 

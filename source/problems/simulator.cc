@@ -516,7 +516,8 @@ namespace PeriDEAL
       // Calibrated on the 28^3 LPS case (110 KB per node assembled, m = 3).
       const double reach   = couples_two_horizons() ? 2 * m : m;
       const double coupled = dim == 3 ? 4. / 3. * M_PI * reach * reach * reach :
-                                        M_PI * reach * reach;
+                             dim == 2 ? M_PI * reach * reach :
+                                        2 * reach;
       // (2D: 1 KB and 1.5 KB; the 2000^2 run took 9.5 GB with local
       // elasticity.)
       double       per_node = dim == 3 ? 2048 : 1024;
@@ -1094,7 +1095,7 @@ namespace PeriDEAL
     bool
     Simulator<dim>::couples_two_horizons() const
     {
-      return model != nullptr && problem->couples_two_horizons(*model);
+      return problem->couples_two_horizons(model.get());
     }
 
 

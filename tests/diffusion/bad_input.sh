@@ -136,6 +136,8 @@ cp base.orig base.prm
 
 # A concentration that turns non-finite stops the run with the step and the
 # node named; what was written before stays complete.
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Flux boundary ids = 1\n  set Flux layer values = mirror\n  set Time stepping = implicit\n  set Time step = 1e-4/' \
+  "diffusion/Flux layer values"
 # 1D: only the problem types registered for 1D, and 1D points.
 expect_error 's/set Dimension = 2/set Dimension = 1/; s/set Problem type = diffusion/set Problem type = explicit dynamics/' \
   "1D runs ('Dimension = 1') offer only diffusion" 2

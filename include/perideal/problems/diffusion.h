@@ -90,11 +90,11 @@ namespace PeriDEAL
       }
 
       /// Diffusion bonds couple over one horizon; mirror layers reach
-      /// their mirror nodes up to two layer thicknesses away.
+      /// their mirror images up to two layer thicknesses away.
       bool
-      couples_two_horizons(const Models::Model<dim> &) const override
+      couples_two_horizons(const Models::Model<dim> *) const override
       {
-        return layer_values == "mirror";
+        return layer_values == "mirror" || flux_values == "mirror";
       }
 
     private:
@@ -106,13 +106,20 @@ namespace PeriDEAL
       void
       choose_time_step(Simulator<dim> &simulator);
 
-      /// Surface points and mirror nodes of the Dirichlet layers.
+      /// The Dirichlet and flux layers and which nodes are prescribed
+      /// (diffusion_layers.cc, as the three functions below).
+      void
+      setup_layers(Simulator<dim> &simulator);
+
+      /// Surface points of the Dirichlet layers and the reflections of
+      /// mirror layers.
       void
       setup_layer_values(Simulator<dim> &simulator);
 
-      /// Values of the Dirichlet nodes at time @p t into @p c.
+      /// Values of the prescribed nodes (Dirichlet layers, mirror flux
+      /// layers) at time @p t into @p c.
       void
-      apply_dirichlet(const double t, VectorType &c) const;
+      apply_layer_values(const double t, VectorType &c) const;
 
       /// The source S(t) of the owned nodes (volume source and fluxes).
       void
@@ -163,6 +170,7 @@ namespace PeriDEAL
       Models::DiffusionKernel                      kernel;
       std::string                                  model_name   = "none";
       std::string                                  layer_values = "function";
+      std::string                                  flux_values  = "source";
       std::unique_ptr<Models::DiffusionModel<dim>> model;
       std::string                                  stepping = "explicit";
       double                                       theta    = 1;
@@ -192,11 +200,24 @@ namespace PeriDEAL
       double                              horizon = 0;
       std::vector<unsigned int>           dirichlet_nodes; // owned
       /// Per Dirichlet node: the nearest point of the physical surface (the
-      /// inner face of the layer) and, for mirror layers, the node of the
-      /// set at the mirror image.
-      std::vector<Point<dim>>   surface_points;
-      std::vector<unsigned int> mirror_nodes;
-      std::vector<unsigned int> mirror_level;
+      /// inner face of the layer).
+      std::vector<Point<dim>> surface_points;
+      /// An owned layer node whose value is reflected through the surface:
+      /// from the node of the set at its mirror image, after the images of
+      /// lower levels (edges, corners).
+      struct Reflection
+      {
+        unsigned int node = 0, image = 0, level = 0;
+        /// Odd (Dirichlet) or even (flux) reflection.
+        bool odd = true;
+        /// The surface point x_b and |x - x_m| = 2 |x - x_b|.
+        Point<dim> surface;
+        double     distance = 0;
+      };
+      std::vector<Reflection> reflections;
+      /// Owned nodes whose values are prescribed: the Dirichlet layers,
+      /// and the flux layers with 'Flux layer values = mirror'.
+      std::vector<unsigned int> prescribed_nodes;
       std::vector<unsigned int> flux_nodes;    // owned
       std::vector<bool>         is_prescribed; // per owned index
       VectorType                c, lc, s, rhs, row_sum;

@@ -83,10 +83,10 @@ namespace PeriDEAL
        * dilatations of the neighbours): the node set then holds the
        * off-process nodes within two horizons and neighbour lists of the
        * off-process neighbours are built. Default: whether the material
-       * model @p model is state-based.
+       * model @p model is state-based (false without one: null).
        */
       virtual bool
-      couples_two_horizons(const Models::Model<dim> &model) const;
+      couples_two_horizons(const Models::Model<dim> *model) const;
 
       static std::string
       family_name();

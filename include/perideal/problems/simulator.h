@@ -229,8 +229,8 @@ namespace PeriDEAL
       void
       check_memory_estimate() const;
 
-      /// Whether owned nodes couple to nodes two horizons away (a
-      /// state-based material model); false without a model.
+      /// Whether owned nodes couple to nodes two horizons away (the
+      /// problem type's answer for this run's material model, if any).
       bool
       couples_two_horizons() const;
 
