@@ -24,8 +24,27 @@ namespace PeriDEAL
   {
     namespace
     {
-      /// Rows of a sparse matrix under construction: row -> (column -> value).
-      using RowMap = std::map<int, std::map<int, double>>;
+      /**
+       * The entries of a sparse matrix under construction, as (row, column,
+       * value) in any order; entries at the same position add up (Epetra
+       * merges them when the matrix is completed). Appending is all the
+       * build loops do: no tree, no per-entry allocation.
+       */
+      struct Entries
+      {
+        struct Entry
+        {
+          int    row, column;
+          double value;
+        };
+        std::vector<Entry> list;
+
+        void
+        add(const int row, const int column, const double value)
+        {
+          list.push_back({row, column, value});
+        }
+      };
 
       /// A lattice position in units of h/2: cell centres have odd
       /// coordinates, face centres an even one along their normal.
@@ -42,43 +61,55 @@ namespace PeriDEAL
         return s;
       }
 
-      /// Build a distributed Epetra matrix from owned rows.
+      /// Build a distributed Epetra matrix from owned rows (the entries are
+      /// bucketed by row, then each row inserted once).
       std::unique_ptr<Epetra_CrsMatrix>
-      make_matrix(const RowMap   &rows,
+      make_matrix(Entries       &&entries,
                   const IndexSet &row_set,
                   const IndexSet &domain_set,
                   const MPI_Comm  comm)
       {
         const Epetra_Map row_map    = row_set.make_trilinos_map(comm, false);
         const Epetra_Map domain_map = domain_set.make_trilinos_map(comm, false);
-        std::vector<int> counts(row_map.NumMyElements(), 0);
-        for (const auto &row : rows)
+        const int        n_rows     = row_map.NumMyElements();
+        std::vector<int> counts(n_rows, 0), lids;
+        lids.reserve(entries.list.size());
+        for (const auto &e : entries.list)
           {
-            const int lid = row_map.LID(row.first);
+            const int lid = row_map.LID(e.row);
             AssertThrow(lid >= 0, ExcInternalError());
-            counts[lid] = row.second.size();
+            lids.push_back(lid);
+            ++counts[lid];
           }
-        auto                matrix = std::make_unique<Epetra_CrsMatrix>(Copy,
+        std::vector<std::size_t> start(n_rows + 1, 0);
+        for (int l = 0; l < n_rows; ++l)
+          start[l + 1] = start[l] + counts[l];
+        std::vector<int>    cols(entries.list.size());
+        std::vector<double> vals(entries.list.size());
+        {
+          std::vector<std::size_t> next(start.begin(), start.end() - 1);
+          for (std::size_t k = 0; k < entries.list.size(); ++k)
+            {
+              const std::size_t at = next[lids[k]]++;
+              cols[at]             = entries.list[k].column;
+              vals[at]             = entries.list[k].value;
+            }
+        }
+        entries.list = std::vector<typename Entries::Entry>();
+        auto matrix  = std::make_unique<Epetra_CrsMatrix>(Copy,
                                                          row_map,
                                                          counts.data(),
-                                                         true);
-        std::vector<int>    cols;
-        std::vector<double> vals;
-        for (const auto &row : rows)
-          {
-            cols.clear();
-            vals.clear();
-            for (const auto &entry : row.second)
-              {
-                cols.push_back(entry.first);
-                vals.push_back(entry.second);
-              }
-            const int ierr = matrix->InsertGlobalValues(row.first,
-                                                        cols.size(),
-                                                        vals.data(),
-                                                        cols.data());
-            AssertThrow(ierr >= 0, ExcMessage("Epetra insertion failed."));
-          }
+                                                         false);
+        for (int l = 0; l < n_rows; ++l)
+          if (counts[l] > 0)
+            {
+              const int ierr =
+                matrix->InsertGlobalValues(row_map.GID(l),
+                                           counts[l],
+                                           vals.data() + start[l],
+                                           cols.data() + start[l]);
+              AssertThrow(ierr >= 0, ExcMessage("Epetra insertion failed."));
+            }
         const int ierr = matrix->FillComplete(domain_map, row_map);
         AssertThrow(ierr == 0, ExcMessage("Epetra FillComplete failed."));
         return matrix;
@@ -853,18 +884,19 @@ namespace PeriDEAL
       const IndexSet body_scalar = make_set(owned_body_keys, s.n_lattice, 1);
 
       // E: lattice displacements from the unknowns.
-      RowMap e_rows;
+      Entries e_rows;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
           const int k = s.key(cell_of_body(i));
           for (unsigned int c = 0; c < dim; ++c)
-            e_rows[dim * k + c]
-                  [s.sys_of_dof(nodes[i].dofs[c], nodes[i].owner)] = 1.;
+            e_rows.add(dim * k + c,
+                       s.sys_of_dof(nodes[i].dofs[c], nodes[i].owner),
+                       1.);
         }
       // X: lattice dilatations from body dilatations.
-      RowMap x_rows;
+      Entries x_rows;
       for (const int k : owned_body_keys)
-        x_rows[k][k] = 1.;
+        x_rows.add(k, k, 1.);
 
       const long long stencil_radius2 =
         4LL * (s.order + 2) * (s.order + 2); // (order+2) h, in half units
@@ -900,7 +932,7 @@ namespace PeriDEAL
           const auto u_weights = s.extrapolate(candidates, pf, s.order);
           for (const auto &w : u_weights)
             for (unsigned int c = 0; c < dim; ++c)
-              e_rows[dim * f.first + c][w.first + c] += w.second;
+              e_rows.add(dim * f.first + c, w.first + c, w.second);
 
           if (s.state_based)
             {
@@ -908,12 +940,12 @@ namespace PeriDEAL
               s.add_body_candidates(pb, stencil_radius2, false, candidates);
               const auto t_weights = s.extrapolate(candidates, pf, s.order - 1);
               for (const auto &w : t_weights)
-                x_rows[f.first][w.first] += w.second;
+                x_rows.add(f.first, w.first, w.second);
             }
         }
 
       // D (body dilatations), A and B (bond forces) for owned body nodes.
-      RowMap d_rows, a_rows, b_rows;
+      Entries d_rows, a_rows, b_rows;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
           const Cell                               ci = cell_of_body(i);
@@ -921,6 +953,10 @@ namespace PeriDEAL
           std::array<types::global_dof_index, dim> row;
           for (unsigned int c = 0; c < dim; ++c)
             row[c] = s.sys_of_dof(nodes[i].dofs[c], nodes[i].owner);
+          // The node's own columns collect a term from every bond: summed
+          // here and added once.
+          Tensor<2, dim> self_a;
+          Tensor<1, dim> self_b, self_d;
           for (unsigned int q = 0; q < s.neighbours.size(); ++q)
             {
               const auto &nb = s.neighbours[q];
@@ -943,21 +979,31 @@ namespace PeriDEAL
                   for (unsigned int c2 = 0; c2 < dim; ++c2)
                     {
                       const double v = s.b2_r[q] * w * n[c] * n[c2];
-                      a_rows[row[c]][dim * kj + c2] -= v;
-                      a_rows[row[c]][dim * ki + c2] += v;
+                      a_rows.add(row[c], dim * kj + c2, -v);
+                      self_a[c][c2] += v;
                     }
                   if (s.state_based)
                     {
-                      b_rows[row[c]][ki] -= s.a_r[q] * w * n[c];
-                      b_rows[row[c]][kj] -= s.a_r[q] * w * n[c];
+                      b_rows.add(row[c], kj, -s.a_r[q] * w * n[c]);
+                      self_b[c] -= s.a_r[q] * w * n[c];
                     }
                 }
               if (s.state_based)
                 for (unsigned int c = 0; c < dim; ++c)
                   {
-                    d_rows[ki][dim * kj + c] += s.g_r[q] * n[c];
-                    d_rows[ki][dim * ki + c] -= s.g_r[q] * n[c];
+                    d_rows.add(ki, dim * kj + c, s.g_r[q] * n[c]);
+                    self_d[c] -= s.g_r[q] * n[c];
                   }
+            }
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              for (unsigned int c2 = 0; c2 < dim; ++c2)
+                a_rows.add(row[c], dim * ki + c2, self_a[c][c2]);
+              if (s.state_based)
+                {
+                  b_rows.add(row[c], ki, self_b[c]);
+                  d_rows.add(ki, dim * ki + c, self_d[c]);
+                }
             }
         }
 
@@ -1048,32 +1094,31 @@ namespace PeriDEAL
                         for (unsigned int c2 = 0; c2 < dim; ++c2)
                           {
                             const double v = s.b2_r[q] * w * n[c] * n[c2];
-                            a_rows[row][dim * kk + c2] += v;
-                            a_rows[row][dim * kj + c2] -= v;
+                            a_rows.add(row, dim * kk + c2, v);
+                            a_rows.add(row, dim * kj + c2, -v);
                           }
                         if (s.state_based)
                           {
-                            b_rows[row][kj] += s.a_r[q] * w * n[c];
-                            b_rows[row][kk] += s.a_r[q] * w * n[c];
+                            b_rows.add(row, kj, s.a_r[q] * w * n[c]);
+                            b_rows.add(row, kk, s.a_r[q] * w * n[c]);
                           }
                       }
                   }
               };
               visit(visit, 0);
-              // A free surface node with no crossing bond cannot happen on a
-              // lattice; keep the row present for the matrix structure.
-              for (unsigned int c = 0; c < dim; ++c)
-                a_rows[node.first_unknown + c];
             }
         }
 
-      s.e_matrix = make_matrix(e_rows, ext_dofs, s.owned_sys, comm);
-      s.a_matrix = make_matrix(a_rows, s.owned_sys, ext_dofs, comm);
+      s.e_matrix = make_matrix(std::move(e_rows), ext_dofs, s.owned_sys, comm);
+      s.a_matrix = make_matrix(std::move(a_rows), s.owned_sys, ext_dofs, comm);
       if (s.state_based)
         {
-          s.d_matrix = make_matrix(d_rows, body_scalar, ext_dofs, comm);
-          s.x_matrix = make_matrix(x_rows, ext_scalar, body_scalar, comm);
-          s.b_matrix = make_matrix(b_rows, s.owned_sys, ext_scalar, comm);
+          s.d_matrix =
+            make_matrix(std::move(d_rows), body_scalar, ext_dofs, comm);
+          s.x_matrix =
+            make_matrix(std::move(x_rows), ext_scalar, body_scalar, comm);
+          s.b_matrix =
+            make_matrix(std::move(b_rows), s.owned_sys, ext_scalar, comm);
         }
     }
 
