@@ -89,9 +89,10 @@ namespace PeriDEAL
         "displacement. A box made by PeriDEAL has ids 0/1 on x = min/max, "
         "2/3 on y, 4/5 on z; a mesh file brings its own ids.");
       prm.declare_entry("Dirichlet components",
-                        dim == 2 ? "x,y" : "x,y,z",
-                        Patterns::MultipleSelection(dim == 2 ? "x|y" :
-                                                               component_names),
+                        dim == 1 ? "x" : (dim == 2 ? "x,y" : "x,y,z"),
+                        Patterns::MultipleSelection(
+                          dim == 1 ? "x" :
+                                     (dim == 2 ? "x|y" : component_names)),
                         "The displacement components prescribed in the "
                         "Dirichlet layer; the others are free there.");
       prm.declare_entry(

@@ -12,6 +12,7 @@
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/diffusion.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -274,6 +275,28 @@ namespace PeriDEAL
                   ExcInvalidInput(section + "/Flux layer thickness",
                                   flux_thickness_text,
                                   "give a thickness > 0 (in horizons)"));
+      // A mirror image lies up to two layer thicknesses away; the node set
+      // holds the off-process nodes within two horizons.
+      AssertThrow(
+        layer_values != "mirror" || dirichlet_thickness <= 1,
+        ExcInvalidInput(section + "/Dirichlet layer thickness",
+                        dirichlet_thickness_text,
+                        "mirror layers reach nodes up to two layer "
+                        "thicknesses away: give at most 1 (horizon)"));
+      AssertThrow(
+        flux_values != "mirror" || flux_thickness <= 1,
+        ExcInvalidInput(section + "/Flux layer thickness",
+                        flux_thickness_text,
+                        "mirror layers reach nodes up to two layer "
+                        "thicknesses away: give at most 1 (horizon)"));
+      for (const auto id : flux_ids)
+        AssertThrow(std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) ==
+                      dirichlet_ids.end(),
+                    ExcInvalidInput(section + "/Flux boundary ids",
+                                    flux_ids_text,
+                                    "boundary id " + std::to_string(id) +
+                                      " is also in 'Dirichlet boundary ids'; a "
+                                      "face carries either a value or a flux"));
       AssertThrow(stepping != "steady state" || !dirichlet_ids.empty(),
                   ExcInvalidInput(section + "/Dirichlet boundary ids",
                                   dirichlet_ids_text,

@@ -104,6 +104,7 @@ namespace PeriDEAL
     {
       surface_points.clear();
       reflections.clear();
+      reflection_passes           = 0;
       const bool dirichlet_mirror = layer_values == "mirror";
       const bool flux_mirror      = flux_values == "mirror";
       const bool dirichlet_points =
@@ -175,7 +176,9 @@ namespace PeriDEAL
       // (a free node, or a layer node filled by a function or the surface
       // value), 1 + its level for an image that is itself reflected (near
       // edges and corners the image across the nearest face lies in the
-      // next face's layer: reflected again).
+      // next face's layer: reflected again). The level of a ghost image
+      // whose own image lies outside this process's node set stays
+      // unknown here (0); its owner knows it.
       std::vector<unsigned int> level(n, 0);
       for (unsigned int sweep = 0; sweep <= dim; ++sweep)
         for (unsigned int i = 0; i < n; ++i)
@@ -184,12 +187,15 @@ namespace PeriDEAL
                          (level[image[i]] > 0 ? level[image[i]] + 1 : 0) :
                          1;
 
-      unsigned int missing_dirichlet = 0, missing_flux = 0;
+      unsigned int missing_dirichlet = 0, missing_flux = 0, passes = 0;
       const auto   add = [&](const unsigned int i) {
         if (!reflected(i))
           return;
-        if (image[i] < 0 || level[i] == 0 || level[i] > dim)
+        if (image[i] < 0 || level[i] > dim)
           ++(kind[i] == dirichlet ? missing_dirichlet : missing_flux);
+        // Unknown here (a chain through another process): as many passes
+        // as a chain can have.
+        passes = std::max(passes, level[i] == 0 ? dim : level[i]);
         Reflection r;
         r.node     = i;
         r.image    = image[i] < 0 ? 0u : static_cast<unsigned int>(image[i]);
@@ -221,6 +227,10 @@ namespace PeriDEAL
                                   flux_values,
                                   "a flux layer node" + why +
                                     "; use 'source'"));
+      // Every process runs the same passes (each has a ghost update), also
+      // one that owns no reflected node.
+      reflection_passes = Utilities::MPI::max(passes, comm);
+      reflection_shift.resize(reflections.size());
     }
 
 
@@ -228,8 +238,6 @@ namespace PeriDEAL
     void
     Diffusion<dim>::apply_layer_values(const double t, VectorType &x) const
     {
-      if (prescribed_nodes.empty())
-        return;
       boundary_value->set_time(t);
       if (layer_values == "function")
         for (const auto i : dirichlet_nodes)
@@ -239,30 +247,37 @@ namespace PeriDEAL
         for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
           x.local_element(op.vector_index(dirichlet_nodes[k])) =
             boundary_value->value(surface_points[k]);
-      if (reflections.empty())
+      if (reflection_passes == 0)
         return;
       // Reflections read the free nodes (level 1) or layer nodes of a
-      // lower level (edges, corners), some of them off-process: one ghost
-      // update per level. Dirichlet: the odd reflection through the
-      // boundary value, C(x) = 2 g(x_b) - C(x_m); flux q into the body:
-      // the even one with the gradient the flux gives, C(x) = C(x_m) +
-      // |x - x_m| q(x_b) / K. Both are first-order Taylor expansions about
-      // x_b, exact for a solution linear along the normal and second order
-      // for a smooth one.
+      // lower level (edges, corners), some of them off-process. Dirichlet:
+      // the odd reflection through the boundary value, C(x) = 2 g(x_b) -
+      // C(x_m); flux q into the body: the even one with the gradient the
+      // flux gives, C(x) = C(x_m) + |x - x_m| q(x_b) / K. Both are
+      // first-order Taylor expansions about x_b, exact for a solution
+      // linear along the normal and second order for a smooth one. Pass p
+      // (after a ghost update) makes every node of level <= p right, so
+      // all passes recompute all reflections and no process needs to know
+      // the level of a chain that runs through another process.
       boundary_flux->set_time(t);
       const double inverse_diffusivity = 1. / kernel.diffusivity();
-      for (unsigned int level = 1; level <= dim; ++level)
+      for (unsigned int k = 0; k < reflections.size(); ++k)
+        {
+          const auto &r       = reflections[k];
+          reflection_shift[k] = r.odd ? 2 * boundary_value->value(r.surface) :
+                                        r.distance * inverse_diffusivity *
+                                          boundary_flux->value(r.surface);
+        }
+      for (unsigned int pass = 0; pass < reflection_passes; ++pass)
         {
           x.update_ghost_values();
-          for (const auto &r : reflections)
-            if (r.level == level)
-              {
-                const double image = x.local_element(op.vector_index(r.image));
-                x.local_element(op.vector_index(r.node)) =
-                  r.odd ? 2 * boundary_value->value(r.surface) - image :
-                          image + r.distance * inverse_diffusivity *
-                                    boundary_flux->value(r.surface);
-              }
+          for (unsigned int k = 0; k < reflections.size(); ++k)
+            {
+              const auto  &r     = reflections[k];
+              const double image = x.local_element(op.vector_index(r.image));
+              x.local_element(op.vector_index(r.node)) =
+                reflection_shift[k] + (r.odd ? -image : image);
+            }
           x.zero_out_ghost_values();
         }
     }

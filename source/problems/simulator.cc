@@ -522,7 +522,9 @@ namespace PeriDEAL
       // elasticity.)
       double       per_node = dim == 3 ? 2048 : 1024;
       const double own      = problem->estimated_bytes_per_node(
-        dim == 3 ? 4. / 3. * M_PI * m * m * m : M_PI * m * m);
+        dim == 3 ? 4. / 3. * M_PI * m * m * m :
+        dim == 2 ? M_PI * m * m :
+                   2 * m);
       if (own >= 0)
         per_node = own;
       else if (linear_solver.is_matrix_free())

@@ -18,7 +18,12 @@ namespace PeriDEAL
       for_each_wedge_offset(const int n, const Function &f)
       {
         std::array<int, dim> o;
-        if constexpr (dim == 2)
+        if constexpr (dim == 1)
+          {
+            for (o[0] = 0; o[0] <= n; ++o[0])
+              f(o);
+          }
+        else if constexpr (dim == 2)
           {
             for (o[1] = 0; o[1] <= n; ++o[1])
               for (o[0] = 0; o[0] <= o[1]; ++o[0])
@@ -57,15 +62,14 @@ namespace PeriDEAL
         algorithm.uniform_grid_weights(offsets, m_ratio);
       for (unsigned int i = 0; i < offsets.size(); ++i)
         {
+          std::string offset;
+          for (unsigned int d = 0; d < dim; ++d)
+            offset += (d > 0 ? ", " : "") + std::to_string(offsets[i][d]);
           AssertThrow(std::isfinite(betas[i]),
                       ExcMessage("The partial-volume algorithm returned a "
                                  "non-finite coefficient for the offset (" +
-                                 std::to_string(offsets[i][0]) + ", " +
-                                 std::to_string(offsets[i][1]) +
-                                 (dim == 3 ?
-                                    ", " + std::to_string(offsets[i][dim - 1]) :
-                                    std::string()) +
-                                 ") at m-ratio " + format_number(m_ratio) +
+                                 offset + ") at m-ratio " +
+                                 format_number(m_ratio) +
                                  "; use the \"exact\" algorithm."));
           wedge_table[index(offsets[i])] = betas[i];
         }

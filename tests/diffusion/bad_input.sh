@@ -134,15 +134,22 @@ expect_error 's/set End time = 0.1/set End time = 0.1\n  set Time step = 0.05/' 
   "Invalid value '0.05' for the parameter 'diffusion/Time step'"
 cp base.orig base.prm
 
-# A concentration that turns non-finite stops the run with the step and the
-# node named; what was written before stays complete.
+# Mirror flux layers: explicit only, at most one horizon thick, and a face
+# carries either a value or a flux.
 expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Flux boundary ids = 1\n  set Flux layer values = mirror\n  set Time stepping = implicit\n  set Time step = 1e-4/' \
   "diffusion/Flux layer values"
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Flux boundary ids = 1\n  set Flux layer values = mirror\n  set Flux layer thickness = 1.5/' \
+  "diffusion/Flux layer thickness" 2
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Flux boundary ids = 0, 1/' \
+  "is also in 'Dirichlet boundary ids'" 2
 # 1D: only the problem types registered for 1D, and 1D points.
 expect_error 's/set Dimension = 2/set Dimension = 1/; s/set Problem type = diffusion/set Problem type = explicit dynamics/' \
   "1D runs ('Dimension = 1') offer only diffusion" 2
 expect_error 's/set Dimension = 2/set Dimension = 1/' \
   "Lower corner" 2
+
+# A concentration that turns non-finite stops the run with the step and the
+# node named; what was written before stays complete.
 
 for np in 1 2; do
   sed -e 's/set End time = 1e-3/set End time = 8e-3\n  set Time step = 1e-3\n  set Output every steps = 2\n  set History every steps = 2/' \

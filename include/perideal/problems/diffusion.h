@@ -215,6 +215,12 @@ namespace PeriDEAL
         double     distance = 0;
       };
       std::vector<Reflection> reflections;
+      /// Passes over the reflections per fill, the same on every process
+      /// (the longest chain of reflections, 0 without mirror layers).
+      unsigned int reflection_passes = 0;
+      /// Per reflection, the data part of its value (2 g or |x - x_m| q/K),
+      /// evaluated once per fill.
+      mutable std::vector<double> reflection_shift;
       /// Owned nodes whose values are prescribed: the Dirichlet layers,
       /// and the flux layers with 'Flux layer values = mirror'.
       std::vector<unsigned int> prescribed_nodes;
