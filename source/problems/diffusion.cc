@@ -23,12 +23,6 @@ namespace PeriDEAL
 {
   namespace Problems
   {
-    namespace
-    {
-      const std::string section = "diffusion";
-    } // namespace
-
-
     template <int dim>
     void
     Diffusion<dim>::declare_parameters(ParameterHandler &prm)
@@ -250,45 +244,49 @@ namespace PeriDEAL
       flux_ids           = Boundary::parse_boundary_ids(flux_ids_text);
       dirichlet_thickness_text = prm.get("Dirichlet layer thickness");
       layer_values             = prm.get("Dirichlet layer values");
-      AssertThrow(layer_values != "mirror" || stepping == "explicit",
-                  ExcInvalidInput(section + "/Dirichlet layer values",
-                                  layer_values,
-                                  "mirror layers need 'Time stepping = "
-                                  "explicit' (their values depend on the "
-                                  "solution); use 'surface value' or "
-                                  "'function'"));
-      flux_values = prm.get("Flux layer values");
-      AssertThrow(flux_values != "mirror" || stepping == "explicit",
-                  ExcInvalidInput(section + "/Flux layer values",
-                                  flux_values,
-                                  "mirror layers need 'Time stepping = "
-                                  "explicit' (their values depend on the "
-                                  "solution); use 'source'"));
-      flux_thickness_text = prm.get("Flux layer thickness");
-      dirichlet_thickness = prm.get_double("Dirichlet layer thickness");
-      flux_thickness      = prm.get_double("Flux layer thickness");
-      AssertThrow(dirichlet_thickness > 0,
-                  ExcInvalidInput(section + "/Dirichlet layer thickness",
-                                  dirichlet_thickness_text,
-                                  "give a thickness > 0 (in horizons)"));
-      AssertThrow(flux_thickness > 0,
-                  ExcInvalidInput(section + "/Flux layer thickness",
-                                  flux_thickness_text,
-                                  "give a thickness > 0 (in horizons)"));
-      // A mirror image lies up to two layer thicknesses away; the node set
-      // holds the off-process nodes within two horizons.
-      AssertThrow(
-        layer_values != "mirror" || dirichlet_thickness <= 1,
-        ExcInvalidInput(section + "/Dirichlet layer thickness",
-                        dirichlet_thickness_text,
-                        "mirror layers reach nodes up to two layer "
-                        "thicknesses away: give at most 1 (horizon)"));
-      AssertThrow(
-        flux_values != "mirror" || flux_thickness <= 1,
-        ExcInvalidInput(section + "/Flux layer thickness",
-                        flux_thickness_text,
-                        "mirror layers reach nodes up to two layer "
-                        "thicknesses away: give at most 1 (horizon)"));
+      flux_values              = prm.get("Flux layer values");
+      flux_thickness_text      = prm.get("Flux layer thickness");
+      dirichlet_thickness      = prm.get_double("Dirichlet layer thickness");
+      flux_thickness           = prm.get_double("Flux layer thickness");
+      // What every kind of layer needs: a thickness > 0; and for mirror
+      // layers explicit stepping (their values depend on the solution) and
+      // at most one horizon (an image lies up to two thicknesses away, and
+      // the node set holds the off-process nodes within two horizons).
+      const auto check_layer = [&](const std::string &kind,
+                                   const std::string &values,
+                                   const double       thickness,
+                                   const std::string &thickness_text,
+                                   const std::string &alternative) {
+        AssertThrow(thickness > 0,
+                    ExcInvalidInput(section + "/" + kind + " layer thickness",
+                                    thickness_text,
+                                    "give a thickness > 0 (in horizons)"));
+        if (values != "mirror")
+          return;
+        AssertThrow(stepping == "explicit",
+                    ExcInvalidInput(section + "/" + kind + " layer values",
+                                    values,
+                                    "mirror layers need 'Time stepping = "
+                                    "explicit' (their values depend on the "
+                                    "solution); use " +
+                                      alternative));
+        AssertThrow(thickness <= 1,
+                    ExcInvalidInput(section + "/" + kind + " layer thickness",
+                                    thickness_text,
+                                    "mirror layers reach nodes up to two "
+                                    "layer thicknesses away: give at most 1 "
+                                    "(horizon)"));
+      };
+      check_layer("Dirichlet",
+                  layer_values,
+                  dirichlet_thickness,
+                  dirichlet_thickness_text,
+                  "'surface value' or 'function'");
+      check_layer("Flux",
+                  flux_values,
+                  flux_thickness,
+                  flux_thickness_text,
+                  "'source'");
       for (const auto id : flux_ids)
         AssertThrow(std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) ==
                       dirichlet_ids.end(),

@@ -16,12 +16,6 @@ namespace PeriDEAL
 {
   namespace Problems
   {
-    namespace
-    {
-      const std::string section = "diffusion";
-    } // namespace
-
-
     template <int dim>
     void
     Diffusion<dim>::setup_layers(Simulator<dim> &simulator)

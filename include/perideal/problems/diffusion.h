@@ -98,6 +98,9 @@ namespace PeriDEAL
       }
 
     private:
+      /// The input subsection, which error messages name entries by.
+      static inline const std::string section = "diffusion";
+
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
       void
