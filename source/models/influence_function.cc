@@ -80,6 +80,40 @@ namespace PeriDEAL
         declare_parameters(ParameterHandler &)
         {}
       };
+
+      /**
+       * delta/|xi|: the influence function of LAMMPS's pair style peri/lps
+       * (1/r there; a state-based model is invariant under a constant
+       * factor in omega). Singular at s = 0, which no bond reaches; its
+       * moments are exact, and the order-0 moment diverges.
+       */
+      class InverseDistance : public InfluenceFunction
+      {
+      public:
+        double
+        value(const double s) const override
+        {
+          return 1 / s;
+        }
+
+        double
+        moment(const unsigned int k) const override
+        {
+          AssertThrow(k > 0,
+                      ExcMessage(
+                        "The influence function 'inverse distance' (delta/r) "
+                        "has no finite moment of order 0, which this model "
+                        "needs to calibrate its constants (a diffusion kernel "
+                        "with q = dim, or the corrosion calibration with "
+                        "q = dim). Choose another 'Influence function' or "
+                        "another q."));
+          return 1. / k;
+        }
+
+        static void
+        declare_parameters(ParameterHandler &)
+        {}
+      };
     } // namespace
   }   // namespace Models
 
@@ -98,3 +132,8 @@ PERIDEAL_REGISTER_CLASS(PeriDEAL::Models::InfluenceFunction,
                         PeriDEAL::Models::Conical,
                         "conical",
                         "1 - |xi| / delta within the horizon")
+PERIDEAL_REGISTER_CLASS(
+  PeriDEAL::Models::InfluenceFunction,
+  PeriDEAL::Models::InverseDistance,
+  "inverse distance",
+  "delta / |xi| within the horizon (LAMMPS's peri/lps uses 1/|xi|)")

@@ -19,7 +19,8 @@ namespace PeriDEAL
      * \omega(|\xi|/\delta)\f$ that weighs bonds by their length relative to
      * the horizon. Registered classes: "gaussian"
      * \f$e^{-r^2/\delta^2}\f$ (Scabbia et al. 2022, Eq. 10), "constant"
-     * \f$1\f$ and "conical" \f$1 - r/\delta\f$.
+     * \f$1\f$, "conical" \f$1 - r/\delta\f$ and "inverse distance"
+     * \f$\delta/r\f$ (the influence function of LAMMPS's `peri/lps`).
      */
     class InfluenceFunction
     {
@@ -33,9 +34,10 @@ namespace PeriDEAL
       /**
        * \f$\int_0^1 \omega(s)\, s^k\, ds\f$, the moments that calibrate
        * material constants (Gauss quadrature, exact for the registered
-       * functions to round-off).
+       * functions to round-off). A function that is singular at s = 0
+       * overrides it and throws for the orders whose integral diverges.
        */
-      double
+      virtual double
       moment(const unsigned int k) const;
 
       /// No parameters by default.
