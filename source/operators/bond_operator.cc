@@ -4,6 +4,7 @@
 #include <perideal/operators/bond_operator.h>
 
 #include <algorithm>
+#include <map>
 
 namespace PeriDEAL
 {
@@ -201,7 +202,100 @@ namespace PeriDEAL
             bond_stencil_first[i + 1] = bond_stencil_index.size();
           }
 
+      find_run_eligible_nodes();
       build_work_lists();
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::find_run_eligible_nodes()
+    {
+      const unsigned int n = nodes->size();
+      run_eligible.assign(n, 0);
+      if (!use_lattice)
+        return;
+      // For every stencil offset o, the index of o - e_0 (-1 if outside).
+      const auto                         &offsets = lists->stencil();
+      std::map<std::array<int, dim>, int> index_of;
+      for (unsigned int k = 0; k < offsets.size(); ++k)
+        index_of[offsets[k].offset] = k;
+      std::vector<std::pair<unsigned int, unsigned int>> pairs;
+      for (unsigned int k = 0; k < offsets.size(); ++k)
+        {
+          auto shifted = offsets[k].offset;
+          --shifted[0];
+          const auto it = index_of.find(shifted);
+          if (it != index_of.end())
+            pairs.emplace_back(k, it->second);
+        }
+      // Node i (off the full stencil) is eligible when its neighbourhood
+      // is invariant under a shift by one slot wherever both positions are
+      // inside its horizon: a node at i + o exists iff one at i + o - e_0
+      // does. It uses node i's own (initial) bonds only, so it does not
+      // depend on the partition; its neighbours along the slot axis with
+      // the same bonds then form runs.
+      std::vector<char> present(offsets.size());
+      for (unsigned int i = 0; i < n; ++i)
+        if (lists->has_list(i) && !lists->has_full_stencil(i))
+          {
+            std::fill(present.begin(), present.end(), 0);
+            for (std::size_t b = bond_stencil_first[i];
+                 b < bond_stencil_first[i + 1];
+                 ++b)
+              present[bond_stencil_index[b]] = 1;
+            bool invariant = bond_stencil_first[i + 1] > bond_stencil_first[i];
+            for (const auto &[k, k_minus] : pairs)
+              invariant = invariant && present[k] == present[k_minus];
+            run_eligible[i] = invariant ? 1 : 0;
+          }
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::make_runs()
+    {
+      const auto split = [&](const std::vector<unsigned int> &work,
+                             std::vector<Run>                &runs,
+                             std::vector<unsigned int>       &gather) {
+        runs.clear();
+        gather.clear();
+        std::vector<std::pair<std::size_t, unsigned int>> candidates;
+        for (const unsigned int i : work)
+          if (use_lattice && run_eligible[i] && list_end[i] > list_first[i] &&
+              !(bond_state != nullptr && bond_state->any_broken(i)))
+            candidates.emplace_back(slot[i], i);
+          else
+            gather.push_back(i);
+        std::sort(candidates.begin(), candidates.end());
+        const std::uint16_t *index = list_stencil_index.data();
+        for (std::size_t a = 0; a < candidates.size();)
+          {
+            const unsigned int i     = candidates[a].second;
+            const std::size_t  first = list_first[i];
+            const std::size_t  size  = list_end[i] - first;
+            std::size_t        b     = a + 1;
+            while (b < candidates.size() && b - a < chunk_size &&
+                   candidates[b].first == candidates[a].first + (b - a))
+              {
+                const unsigned int j = candidates[b].second;
+                if (list_end[j] - list_first[j] != size ||
+                    !std::equal(index + first,
+                                index + first + size,
+                                index + list_first[j]))
+                  break;
+                ++b;
+              }
+            runs.push_back({candidates[a].first,
+                            static_cast<unsigned int>(b - a),
+                            first,
+                            static_cast<unsigned int>(size)});
+            a = b;
+          }
+      };
+      split(theta_list_nodes, theta_runs, theta_gather_nodes);
+      split(force_list_nodes, force_runs, force_gather_nodes);
     }
 
 
@@ -348,6 +442,13 @@ namespace PeriDEAL
         bond_visits += chunk.length * stencil_size;
       for (const auto &chunk : force_chunks)
         bond_visits += chunk.length * stencil_size;
+      if (use_lattice && state_based)
+        {
+          theta_run_factor.resize_fast(n_slots);
+          for (const unsigned int i : theta_list_nodes)
+            theta_run_factor[slot[i]] = s_slot[slot[i]] * list_theta_scale[i];
+        }
+      make_runs();
     }
 
 
@@ -440,7 +541,10 @@ namespace PeriDEAL
               list_end[i] = write_intact(i, list_first[i]);
               list_stencil_index.resize(list_end[i]);
               list_theta_scale[i] = m[i] > 0 ? m0 / m[i] : 0.;
-              is_listed[i]        = 1;
+              if (state_based)
+                theta_run_factor[slot[i]] =
+                  s_slot[slot[i]] * list_theta_scale[i];
+              is_listed[i] = 1;
               if (i < n_owned && lists->has_full_stencil(i))
                 --n_owned_stencil;
             }
@@ -461,6 +565,7 @@ namespace PeriDEAL
       for (const auto *chunks : {&theta_chunks, &force_chunks})
         for (const auto &chunk : *chunks)
           bond_visits += chunk.length * stencil_size;
+      make_runs();
     }
 
 
@@ -687,18 +792,56 @@ namespace PeriDEAL
     BondOperator<dim>::apply(const VectorType &displacement,
                              VectorType       &force) const
     {
+      apply_passes<false>(displacement, force);
+    }
+
+
+    template <int dim>
+    double
+    BondOperator<dim>::apply_with_energy(const VectorType &displacement,
+                                         VectorType       &force) const
+    {
+      if (!finite && !with_failure)
+        {
+          apply_passes<false>(displacement, force);
+          return elastic_energy(displacement);
+        }
+      e_slot.resize_fast(n_slots);
+      apply_passes<true>(displacement, force);
+      // V_i W_i = 1/2 s_i sum_j b_ij e_ij^2 + 1/2 V_i lambda theta_i^2 as
+      // in elastic_energy(), summed in node order (the same on every run).
+      const double lambda = model->dilatation_energy_modulus();
+      double       energy = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const std::size_t si = slot[i];
+          const double      theta =
+            state_based && s_slot[si] != 0 ? t_slot[si] / s_slot[si] : 0.;
+          energy += 0.5 * s_slot[si] * e_slot[si] +
+                    0.5 * (*nodes)[i].volume() * lambda * theta * theta;
+        }
+      return Utilities::MPI::sum(energy, nodes->get_communicator());
+    }
+
+
+    template <int dim>
+    template <bool with_energy>
+    void
+    BondOperator<dim>::apply_passes(const VectorType &displacement,
+                                    VectorType       &force) const
+    {
       copy_in(displacement);
       if (finite)
         {
           if (state_based)
             nonlinear_dilatation_pass<true>();
-          nonlinear_force_pass<true>();
+          nonlinear_force_pass<true, with_energy>();
         }
       else if (with_failure)
         {
           if (state_based)
             nonlinear_dilatation_pass<false>();
-          nonlinear_force_pass<false>();
+          nonlinear_force_pass<false, with_energy>();
         }
       else
         {
@@ -877,6 +1020,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    unsigned int
+    BondOperator<dim>::n_run_nodes() const
+    {
+      return force_list_nodes.size() - force_gather_nodes.size();
+    }
+
+
+    template <int dim>
     std::size_t
     BondOperator<dim>::n_bond_visits() const
     {
@@ -909,7 +1060,12 @@ namespace PeriDEAL
         bond_stencil_first.capacity() * sizeof(std::size_t) +
         list_theta_scale.capacity() * sizeof(double) +
         (2 * dim + 2) * n_slots * sizeof(double) +
-        s0_slot.size() * sizeof(double);
+        s0_slot.size() * sizeof(double) +
+        (theta_runs.capacity() + force_runs.capacity()) * sizeof(Run) +
+        (theta_gather_nodes.capacity() + force_gather_nodes.capacity()) *
+          sizeof(unsigned int) +
+        run_eligible.capacity() +
+        (theta_run_factor.size() + e_slot.size()) * sizeof(double);
       return bytes;
     }
 

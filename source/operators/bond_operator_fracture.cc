@@ -20,6 +20,16 @@ namespace PeriDEAL
     {
       constexpr unsigned int chunk_grain = 4;
       constexpr unsigned int node_grain  = 256;
+
+      /// Consecutive slots and the stencil offsets to visit for them
+      /// (index == nullptr: all of them).
+      struct Block
+      {
+        std::size_t          first_slot;
+        unsigned int         length;
+        const std::uint16_t *index;
+        std::size_t          n_index;
+      };
     } // namespace
 
 
@@ -103,79 +113,107 @@ namespace PeriDEAL
     BondOperator<dim>::nonlinear_dilatation_pass() const
     {
       const std::size_t n_offsets = stencil.slot_offset.size();
-      parallel::apply_to_subranges(
-        std::size_t(0),
-        theta_chunks.size(),
-        [&](const std::size_t begin, const std::size_t end) {
-          // Bonds over their critical stretch, found in this subrange
-          // (allocates only when a bond fails), handed over once.
-          std::vector<ExceededBond> found;
-          alignas(64) double        theta[chunk_size];
-          alignas(64) double        failed[chunk_size];
-          for (std::size_t c = begin; c < end; ++c)
-            {
-              const std::size_t  s0  = theta_chunks[c].first_slot;
-              const unsigned int len = theta_chunks[c].length;
-              for (unsigned int l = 0; l < len; ++l)
-                theta[l] = 0;
-              for (std::size_t k = 0; k < n_offsets; ++k)
-                {
-                  const std::ptrdiff_t o = stencil.slot_offset[k];
-                  const double         g = stencil.g[k], r = stencil.r[k],
-                               inv_r = stencil.inv_r[k];
-                  double        xi[dim], nk[dim];
-                  const double *ui[dim], *uj[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      xi[d] = stencil.xi[d][k];
-                      nk[d] = stencil.n[d][k];
-                      ui[d] = u_slot[d].data() + s0;
-                      uj[d] = ui[d] + o;
-                    }
-                  const double *ci = s0_slot.data() + s0, *cj = ci + o;
-                  double        n_failed = 0;
+      // One vectorised sweep over runs of consecutive slots: the chunks of
+      // the shared stencil (every offset) or the runs of list nodes (the
+      // offsets of their common bonds, with their own dilatation factor).
+      const auto sweep = [&](const std::size_t n_blocks, const auto &block) {
+        parallel::apply_to_subranges(
+          std::size_t(0),
+          n_blocks,
+          [&](const std::size_t begin, const std::size_t end) {
+            // Bonds over their critical stretch, found in this subrange
+            // (allocates only when a bond fails), handed over once.
+            std::vector<ExceededBond> found;
+            alignas(64) double        theta[chunk_size];
+            alignas(64) double        failed[chunk_size];
+            for (std::size_t c = begin; c < end; ++c)
+              {
+                const Block                blk   = block(c);
+                const std::size_t          s0    = blk.first_slot;
+                const unsigned int         len   = blk.length;
+                const std::uint16_t *const index = blk.index;
+                const std::size_t          n_k   = blk.n_index;
+                for (unsigned int l = 0; l < len; ++l)
+                  theta[l] = 0;
+                for (std::size_t q = 0; q < n_k; ++q)
+                  {
+                    const std::size_t    k = index != nullptr ? index[q] : q;
+                    const std::ptrdiff_t o = stencil.slot_offset[k];
+                    const double         g = stencil.g[k], r = stencil.r[k],
+                                 inv_r = stencil.inv_r[k];
+                    double        xi[dim], nk[dim];
+                    const double *ui[dim], *uj[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        xi[d] = stencil.xi[d][k];
+                        nk[d] = stencil.n[d][k];
+                        ui[d] = u_slot[d].data() + s0;
+                        uj[d] = ui[d] + o;
+                      }
+                    const double *ci = s0_slot.data() + s0, *cj = ci + o;
+                    double        n_failed = 0;
 #pragma omp simd reduction(+ : n_failed)
-                  for (unsigned int l = 0; l < len; ++l)
-                    {
-                      double e = 0;
-                      if constexpr (finite_kinematics)
-                        {
-                          double length2 = 0;
+                    for (unsigned int l = 0; l < len; ++l)
+                      {
+                        double e = 0;
+                        if constexpr (finite_kinematics)
+                          {
+                            double length2 = 0;
+#pragma GCC unroll 3
+                            for (unsigned int d = 0; d < dim; ++d)
+                              {
+                                const double y = xi[d] + (uj[d][l] - ui[d][l]);
+                                length2 += y * y;
+                              }
+                            e = std::sqrt(length2) - r;
+                          }
+                        else
 #pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
-                            {
-                              const double y = xi[d] + (uj[d][l] - ui[d][l]);
-                              length2 += y * y;
-                            }
-                          e = std::sqrt(length2) - r;
-                        }
-                      else
-#pragma GCC unroll 3
-                        for (unsigned int d = 0; d < dim; ++d)
-                          e += nk[d] * (uj[d][l] - ui[d][l]);
-                      const bool intact = e * inv_r < std::min(ci[l], cj[l]);
-                      theta[l] += intact ? g * e : 0.;
-                      failed[l] = intact ? 0. : 1.;
-                      n_failed += intact ? 0. : 1.;
-                    }
-                  if (n_failed > 0)
+                            e += nk[d] * (uj[d][l] - ui[d][l]);
+                        const bool intact = e * inv_r < std::min(ci[l], cj[l]);
+                        theta[l] += intact ? g * e : 0.;
+                        failed[l] = intact ? 0. : 1.;
+                        n_failed += intact ? 0. : 1.;
+                      }
+                    if (n_failed > 0)
+                      for (unsigned int l = 0; l < len; ++l)
+                        if (failed[l] != 0)
+                          found.emplace_back(node_of_slot(s0 + l),
+                                             node_of_slot(s0 + l + o));
+                  }
+                if (index == nullptr)
+                  {
+                    const double s = stencil.node_factor;
                     for (unsigned int l = 0; l < len; ++l)
-                      if (failed[l] != 0)
-                        found.emplace_back(node_of_slot(s0 + l),
-                                           node_of_slot(s0 + l + o));
-                }
-              const double s = stencil.node_factor;
-              for (unsigned int l = 0; l < len; ++l)
-                t_slot[s0 + l] = s * theta[l];
-            }
-          if (!found.empty())
-            record_exceeded(found);
-        },
-        chunk_grain);
+                      t_slot[s0 + l] = s * theta[l];
+                  }
+                else
+                  for (unsigned int l = 0; l < len; ++l)
+                    t_slot[s0 + l] = theta_run_factor[s0 + l] * theta[l];
+              }
+            if (!found.empty())
+              record_exceeded(found);
+          },
+          chunk_grain);
+      };
+      sweep(theta_chunks.size(), [&](const std::size_t c) {
+        return Block{theta_chunks[c].first_slot,
+                     theta_chunks[c].length,
+                     nullptr,
+                     n_offsets};
+      });
+      sweep(theta_runs.size(), [&](const std::size_t c) {
+        const Run &run = theta_runs[c];
+        return Block{run.first_slot,
+                     run.length,
+                     list_stencil_index.data() + run.index_first,
+                     run.n_index};
+      });
 
       parallel::apply_to_subranges(
         std::size_t(0),
-        theta_list_nodes.size(),
+        theta_gather_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
           // Bonds over their critical stretch, found in this subrange
           // (allocates only when a bond fails), handed over once.
@@ -202,7 +240,7 @@ namespace PeriDEAL
           (void)ss;
           for (std::size_t q = begin; q < end; ++q)
             {
-              const unsigned int i     = theta_list_nodes[q];
+              const unsigned int i     = theta_gather_nodes[q];
               const std::size_t  si    = slot[i];
               double             theta = 0;
               const auto         visit = [&](const std::size_t sj,
@@ -291,116 +329,146 @@ namespace PeriDEAL
 
 
     template <int dim>
-    template <bool finite_kinematics>
+    template <bool finite_kinematics, bool with_energy>
     void
     BondOperator<dim>::nonlinear_force_pass() const
     {
       const std::size_t n_offsets = stencil.slot_offset.size();
       const bool        sb        = state_based;
-      parallel::apply_to_subranges(
-        std::size_t(0),
-        force_chunks.size(),
-        [&](const std::size_t begin, const std::size_t end) {
-          // Bonds over their critical stretch, found in this subrange
-          // (allocates only when a bond fails), handed over once.
-          std::vector<ExceededBond> found;
-          alignas(64) double        force[dim][chunk_size];
-          alignas(64) double        failed[chunk_size];
-          for (std::size_t c = begin; c < end; ++c)
-            {
-              const std::size_t  s0  = force_chunks[c].first_slot;
-              const unsigned int len = force_chunks[c].length;
-              for (unsigned int d = 0; d < dim; ++d)
-                for (unsigned int l = 0; l < len; ++l)
-                  force[d][l] = 0;
-              const double *ui[dim];
-              for (unsigned int d = 0; d < dim; ++d)
-                ui[d] = u_slot[d].data() + s0;
-              const double *ti = t_slot.data() + s0;
-              const double *si = s_slot.data() + s0;
-              const double *ci = s0_slot.data() + s0;
-              for (std::size_t k = 0; k < n_offsets; ++k)
-                {
-                  const std::ptrdiff_t o = stencil.slot_offset[k];
-                  // Bond-based: s = 1 at every node, theta = 0.
-                  const double a = sb ? stencil.a[k] : 0.;
-                  const double b = stencil.b[k], r = stencil.r[k],
-                               inv_r = stencil.inv_r[k];
-                  double        xi[dim], nk[dim];
-                  const double *uj[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      xi[d] = stencil.xi[d][k];
-                      nk[d] = stencil.n[d][k];
-                      uj[d] = ui[d] + o;
-                    }
-                  const double *tj = ti + o, *sj = si + o, *cj = ci + o;
-                  double        n_failed = 0;
-                  // Bond-based models (s = 1, no dilatation) skip the loads
-                  // of the state-based terms.
-                  const auto lanes = [&](auto state_based_tag) {
-                    constexpr bool with_state =
-                      decltype(state_based_tag)::value;
-#pragma omp simd reduction(+ : n_failed)
-                    for (unsigned int l = 0; l < len; ++l)
+      // As in the dilatation pass: the stencil chunks, then the runs.
+      const auto sweep = [&](const std::size_t n_blocks, const auto &block) {
+        parallel::apply_to_subranges(
+          std::size_t(0),
+          n_blocks,
+          [&](const std::size_t begin, const std::size_t end) {
+            // Bonds over their critical stretch, found in this subrange
+            // (allocates only when a bond fails), handed over once.
+            std::vector<ExceededBond> found;
+            alignas(64) double        force[dim][chunk_size];
+            alignas(64) double        failed[chunk_size];
+            alignas(64) double        energy[chunk_size];
+            for (std::size_t c = begin; c < end; ++c)
+              {
+                const Block                blk   = block(c);
+                const std::size_t          s0    = blk.first_slot;
+                const unsigned int         len   = blk.length;
+                const std::uint16_t *const index = blk.index;
+                const std::size_t          n_k   = blk.n_index;
+                for (unsigned int d = 0; d < dim; ++d)
+                  for (unsigned int l = 0; l < len; ++l)
+                    force[d][l] = 0;
+                if constexpr (with_energy)
+                  for (unsigned int l = 0; l < len; ++l)
+                    energy[l] = 0;
+                const double *ui[dim];
+                for (unsigned int d = 0; d < dim; ++d)
+                  ui[d] = u_slot[d].data() + s0;
+                const double *ti = t_slot.data() + s0;
+                const double *si = s_slot.data() + s0;
+                const double *ci = s0_slot.data() + s0;
+                for (std::size_t q = 0; q < n_k; ++q)
+                  {
+                    const std::size_t    k = index != nullptr ? index[q] : q;
+                    const std::ptrdiff_t o = stencil.slot_offset[k];
+                    // Bond-based: s = 1 at every node, theta = 0.
+                    const double a = sb ? stencil.a[k] : 0.;
+                    const double b = stencil.b[k], r = stencil.r[k],
+                                 inv_r = stencil.inv_r[k];
+                    double        xi[dim], nk[dim];
+                    const double *uj[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
                       {
-                        double y[dim], e = 0, scale = 1;
-                        if constexpr (finite_kinematics)
-                          {
-                            double length2 = 0;
+                        xi[d] = stencil.xi[d][k];
+                        nk[d] = stencil.n[d][k];
+                        uj[d] = ui[d] + o;
+                      }
+                    const double *tj = ti + o, *sj = si + o, *cj = ci + o;
+                    double        n_failed = 0;
+                    // Bond-based models (s = 1, no dilatation) skip the loads
+                    // of the state-based terms.
+                    const auto lanes = [&](auto state_based_tag) {
+                      constexpr bool with_state =
+                        decltype(state_based_tag)::value;
+#pragma omp simd reduction(+ : n_failed)
+                      for (unsigned int l = 0; l < len; ++l)
+                        {
+                          double y[dim], e = 0, scale = 1;
+                          if constexpr (finite_kinematics)
+                            {
+                              double length2 = 0;
+#pragma GCC unroll 3
+                              for (unsigned int d = 0; d < dim; ++d)
+                                {
+                                  y[d] = xi[d] + (uj[d][l] - ui[d][l]);
+                                  length2 += y[d] * y[d];
+                                }
+                              const double length = std::sqrt(length2);
+                              e                   = length - r;
+                              scale = length > 0 ? 1. / length : 0.;
+                            }
+                          else
 #pragma GCC unroll 3
                             for (unsigned int d = 0; d < dim; ++d)
                               {
-                                y[d] = xi[d] + (uj[d][l] - ui[d][l]);
-                                length2 += y[d] * y[d];
+                                y[d] = nk[d];
+                                e += nk[d] * (uj[d][l] - ui[d][l]);
                               }
-                            const double length = std::sqrt(length2);
-                            e                   = length - r;
-                            scale               = length > 0 ? 1. / length : 0.;
-                          }
-                        else
+                          const bool intact =
+                            e * inv_r < std::min(ci[l], cj[l]);
+                          double t;
+                          if constexpr (with_state)
+                            t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                          else
+                            t = 2 * b * e;
+                          const double ty = intact ? t * scale : 0.;
 #pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
-                            {
-                              y[d] = nk[d];
-                              e += nk[d] * (uj[d][l] - ui[d][l]);
-                            }
-                        const bool intact = e * inv_r < std::min(ci[l], cj[l]);
-                        double     t;
-                        if constexpr (with_state)
-                          t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
-                        else
-                          t = 2 * b * e;
-                        const double ty = intact ? t * scale : 0.;
-#pragma GCC unroll 3
-                        for (unsigned int d = 0; d < dim; ++d)
-                          force[d][l] += ty * y[d];
-                        failed[l] = intact ? 0. : 1.;
-                        n_failed += intact ? 0. : 1.;
-                      }
-                  };
-                  if (sb)
-                    lanes(std::true_type());
-                  else
-                    lanes(std::false_type());
-                  if (n_failed > 0)
-                    for (unsigned int l = 0; l < len; ++l)
-                      if (failed[l] != 0)
-                        found.emplace_back(node_of_slot(s0 + l),
-                                           node_of_slot(s0 + l + o));
-                }
-              for (unsigned int d = 0; d < dim; ++d)
-                for (unsigned int l = 0; l < len; ++l)
-                  f_slot[d][s0 + l] = force[d][l];
-            }
-          if (!found.empty())
-            record_exceeded(found);
-        },
-        chunk_grain);
+                            force[d][l] += ty * y[d];
+                          if constexpr (with_energy)
+                            energy[l] += intact ? b * e * e : 0.;
+                          failed[l] = intact ? 0. : 1.;
+                          n_failed += intact ? 0. : 1.;
+                        }
+                    };
+                    if (sb)
+                      lanes(std::true_type());
+                    else
+                      lanes(std::false_type());
+                    if (n_failed > 0)
+                      for (unsigned int l = 0; l < len; ++l)
+                        if (failed[l] != 0)
+                          found.emplace_back(node_of_slot(s0 + l),
+                                             node_of_slot(s0 + l + o));
+                  }
+                for (unsigned int d = 0; d < dim; ++d)
+                  for (unsigned int l = 0; l < len; ++l)
+                    f_slot[d][s0 + l] = force[d][l];
+                if constexpr (with_energy)
+                  for (unsigned int l = 0; l < len; ++l)
+                    e_slot[s0 + l] = energy[l];
+              }
+            if (!found.empty())
+              record_exceeded(found);
+          },
+          chunk_grain);
+      };
+      sweep(force_chunks.size(), [&](const std::size_t c) {
+        return Block{force_chunks[c].first_slot,
+                     force_chunks[c].length,
+                     nullptr,
+                     n_offsets};
+      });
+      sweep(force_runs.size(), [&](const std::size_t c) {
+        const Run &run = force_runs[c];
+        return Block{run.first_slot,
+                     run.length,
+                     list_stencil_index.data() + run.index_first,
+                     run.n_index};
+      });
 
       parallel::apply_to_subranges(
         std::size_t(0),
-        force_list_nodes.size(),
+        force_gather_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
           // Bonds over their critical stretch, found in this subrange
           // (allocates only when a bond fails), handed over once.
@@ -427,10 +495,11 @@ namespace PeriDEAL
           (void)ss;
           for (std::size_t q = begin; q < end; ++q)
             {
-              const unsigned int i      = force_list_nodes[q];
-              const std::size_t  si     = slot[i];
-              double             f[dim] = {};
-              const auto         visit  = [&](const std::size_t sj,
+              const unsigned int i           = force_gather_nodes[q];
+              const std::size_t  si          = slot[i];
+              double             f[dim]      = {};
+              double             node_energy = 0;
+              const auto         visit       = [&](const std::size_t sj,
                                      const double     *xi,
                                      const double     *n,
                                      const double      r,
@@ -464,6 +533,8 @@ namespace PeriDEAL
                                  b * (s_slot[si] + s_slot[sj]) * e;
                 for (unsigned int d = 0; d < dim; ++d)
                   f[d] += t * scale * y[d];
+                if constexpr (with_energy)
+                  node_energy += b * e * e;
               };
               if (use_lattice)
                 {
@@ -483,9 +554,9 @@ namespace PeriDEAL
                   // closure inside the loop keeps it from vectorising.
                   const bool with_state = sb;
                   double    *flag       = failed.data();
-                  double     f0 = 0, f1 = 0, f2 = 0;
+                  double     f0 = 0, f1 = 0, f2 = 0, en = 0;
                   double     n_failed = 0;
-#pragma omp simd reduction(+ : f0, f1, f2, n_failed)
+#pragma omp simd reduction(+ : f0, f1, f2, en, n_failed)
                   for (std::size_t b = first; b < last; ++b)
                     {
                       const unsigned int k  = index[b];
@@ -526,6 +597,8 @@ namespace PeriDEAL
                       f1 += ty * y1;
                       if constexpr (dim == 3)
                         f2 += ty * y2;
+                      if constexpr (with_energy)
+                        en += intact ? bs[k] * e * e : 0.;
                       flag[b - first] = intact ? 0. : 1.;
                       n_failed += intact ? 0. : 1.;
                     }
@@ -533,6 +606,7 @@ namespace PeriDEAL
                   f[1] = f1;
                   if constexpr (dim == 3)
                     f[dim - 1] = f2;
+                  node_energy = en;
                   if (n_failed > 0)
                     for (std::size_t b = first; b < last; ++b)
                       if (failed[b - first] != 0)
@@ -555,6 +629,8 @@ namespace PeriDEAL
                   }
               for (unsigned int d = 0; d < dim; ++d)
                 f_slot[d][si] = f[d];
+              if constexpr (with_energy)
+                e_slot[si] = node_energy;
             }
           if (!found.empty())
             record_exceeded(found);
@@ -672,12 +748,20 @@ namespace PeriDEAL
     template void
     BondOperator<3>::nonlinear_dilatation_pass<false>() const;
     template void
-    BondOperator<2>::nonlinear_force_pass<true>() const;
+    BondOperator<2>::nonlinear_force_pass<true, false>() const;
     template void
-    BondOperator<2>::nonlinear_force_pass<false>() const;
+    BondOperator<2>::nonlinear_force_pass<true, true>() const;
     template void
-    BondOperator<3>::nonlinear_force_pass<true>() const;
+    BondOperator<2>::nonlinear_force_pass<false, false>() const;
     template void
-    BondOperator<3>::nonlinear_force_pass<false>() const;
+    BondOperator<2>::nonlinear_force_pass<false, true>() const;
+    template void
+    BondOperator<3>::nonlinear_force_pass<true, false>() const;
+    template void
+    BondOperator<3>::nonlinear_force_pass<true, true>() const;
+    template void
+    BondOperator<3>::nonlinear_force_pass<false, false>() const;
+    template void
+    BondOperator<3>::nonlinear_force_pass<false, true>() const;
   } // namespace Operators
 } // namespace PeriDEAL

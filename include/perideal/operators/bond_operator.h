@@ -176,6 +176,19 @@ namespace PeriDEAL
       apply(const VectorType &displacement, VectorType &force) const;
 
       /**
+       * apply(), and the elastic energy of the same state as
+       * elastic_energy() gives it (to round-off; before
+       * commit_broken_bonds(), whose bonds over their critical stretch this
+       * evaluation already leaves out). With finite kinematics or failure
+       * the force pass sums the bond energies on the way, which saves the
+       * energy's own pass over the bonds; otherwise it is that pass.
+       * Collective.
+       */
+      double
+      apply_with_energy(const VectorType &displacement,
+                        VectorType       &force) const;
+
+      /**
        * The dilatation of every node with a list (0 elsewhere), from
        * @p displacement with up-to-date ghost values.
        */
@@ -226,6 +239,11 @@ namespace PeriDEAL
       unsigned int
       n_list_nodes() const;
 
+      /// Of those, the nodes that finite kinematics and failure evaluate in
+      /// runs of consecutive slots (Run) rather than one by one.
+      unsigned int
+      n_run_nodes() const;
+
       /// Bond visits of one apply() on this process (both passes).
       std::size_t
       n_bond_visits() const;
@@ -250,6 +268,21 @@ namespace PeriDEAL
       {
         std::size_t  first_slot;
         unsigned int length;
+      };
+
+      /**
+       * A run of consecutive slots of intact nodes off the shared stencil
+       * (near the surface) whose bonds are the same stencil offsets,
+       * list_stencil_index[index_first, index_first + n_index): evaluated
+       * like a Chunk, vectorised over the slots, but over those offsets
+       * only, instead of one gather loop per node.
+       */
+      struct Run
+      {
+        std::size_t  first_slot;
+        unsigned int length;
+        std::size_t  index_first;
+        unsigned int n_index;
       };
 
       /// One bond of a node outside the shared stencil.
@@ -307,14 +340,25 @@ namespace PeriDEAL
       std::vector<std::uint16_t> bond_stencil_index;
       std::vector<std::size_t>   bond_stencil_first;
       std::vector<double>        list_theta_scale; // m_0 / m_i per node
-      std::vector<unsigned int>  owned_slots;
-      unsigned int               n_owned_stencil = 0;
-      std::size_t                bond_visits     = 0;
+      // The list nodes of the nonlinear passes split into runs (Run) and
+      // the rest, evaluated node by node with gathers. run_eligible[i]:
+      // node i's neighbourhood looks the same one slot further along the
+      // slot axis wherever both are inside its horizon (a node-local test,
+      // so every partition treats a node alike); it joins a run while it
+      // has no broken bond. theta_run_factor: s_i m_0 / m_i per slot.
+      std::vector<Run>          theta_runs, force_runs;
+      std::vector<unsigned int> theta_gather_nodes, force_gather_nodes;
+      std::vector<char>         run_eligible;
+      AlignedVector<double>     theta_run_factor;
+      std::vector<unsigned int> owned_slots;
+      unsigned int              n_owned_stencil = 0;
+      std::size_t               bond_visits     = 0;
 
       // Scratch: displacement, force, s * theta and s per slot; the
       // critical stretch per slot (with failure).
       mutable std::array<AlignedVector<double>, dim> u_slot, f_slot;
       mutable AlignedVector<double>                  t_slot;
+      mutable AlignedVector<double>                  e_slot;
       AlignedVector<double>                          s_slot;
       AlignedVector<double>                          s0_slot;
       std::vector<double>                            critical_stretch;
@@ -354,6 +398,15 @@ namespace PeriDEAL
       void
       build_work_lists();
 
+      /// Split the list nodes into runs and gather nodes (after every
+      /// change of the work lists).
+      void
+      make_runs();
+
+      /// Which list nodes may join runs (once, at reinit()).
+      void
+      find_run_eligible_nodes();
+
       /// Runs of consecutive slots of the stencil nodes that need the
       /// dilatation pass (@p for_theta) or the force pass.
       void
@@ -384,9 +437,16 @@ namespace PeriDEAL
       void
       nonlinear_dilatation_pass() const;
 
-      template <bool finite_kinematics>
+      /// With @p with_energy, also b e^2 summed over each owned node's
+      /// intact bonds into e_slot.
+      template <bool finite_kinematics, bool with_energy = false>
       void
       nonlinear_force_pass() const;
+
+      /// The force passes of apply() and the copy into @p force.
+      template <bool with_energy>
+      void
+      apply_passes(const VectorType &displacement, VectorType &force) const;
 
       /// Record bonds (node, neighbour) found over their critical stretch
       /// (thread-safe; one lock per subrange in which bonds failed).

@@ -117,9 +117,12 @@ namespace PeriDEAL
                        const double    dt);
 
       /// Forces at the current u, bond failure committed; the
-      /// acceleration of the free DoFs.
+      /// acceleration of the free DoFs. With @p with_energy the elastic
+      /// energy of this state comes from the same pass over the bonds
+      /// (BondOperator::apply_with_energy()), for record_energies().
       void
-      compute_acceleration(Simulator<dim> &simulator);
+      compute_acceleration(Simulator<dim> &simulator,
+                           const bool      with_energy = false);
 
       /// Energies and broken bonds now: one CSV row (collective).
       void
@@ -198,12 +201,16 @@ namespace PeriDEAL
       std::vector<bool>       is_prescribed; // per local vector index
       VectorType              u, v, a, force, previous_force, load, mass;
       double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
-      unsigned int            step_number = 0, n_steps = 0;
-      double                  external_work = 0, load_factor = 0;
-      std::size_t             broken_bonds  = 0;
-      double                  last_progress = 0, next_output_time = 0;
-      double                  loop_start      = 0;
-      unsigned int            loop_start_step = 0;
+      /// The elastic energy from the last compute_acceleration() with
+      /// energy, and the step it belongs to (invalid: none).
+      double       step_elastic_energy = 0;
+      unsigned int elastic_energy_step = numbers::invalid_unsigned_int;
+      unsigned int step_number = 0, n_steps = 0;
+      double       external_work = 0, load_factor = 0;
+      std::size_t  broken_bonds  = 0;
+      double       last_progress = 0, next_output_time = 0;
+      double       loop_start      = 0;
+      unsigned int loop_start_step = 0;
       std::vector<std::vector<double>>            energy_rows;
       std::vector<std::pair<double, std::string>> records;
     };
