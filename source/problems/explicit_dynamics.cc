@@ -447,6 +447,12 @@ namespace PeriDEAL
                                                    nodal_load);
       for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
         load[dof] = nodal_load[dof];
+      // The update loops blend with a 0/1 mask (they vectorise), and skip
+      // the work of the loads when there are none anywhere.
+      free_dof.resize(u.locally_owned_size());
+      for (unsigned int k = 0; k < free_dof.size(); ++k)
+        free_dof[k] = is_prescribed[k] ? 0. : 1.;
+      with_load = Utilities::MPI::max(load.linfty_norm(), comm) > 0;
 
       // Probes: the nearest node over all processes (ties: lowest DoF).
       probe_nodes.assign(probe_points.size(), numbers::invalid_unsigned_int);
@@ -589,12 +595,14 @@ namespace PeriDEAL
       load_factor = load_history->value(Point<1>());
       (void)simulator;
       const unsigned int n = u.locally_owned_size();
+      const double *pf = force.begin(), *pl = load.begin(), *pm = mass.begin(),
+                   *free = free_dof.data();
+      double *pa         = a.begin();
       for (unsigned int k = 0; k < n; ++k)
-        a.local_element(k) =
-          is_prescribed[k] ?
-            0. :
-            (force.local_element(k) + load_factor * load.local_element(k)) /
-              mass.local_element(k);
+        {
+          const double acceleration = (pf[k] + load_factor * pl[k]) / pm[k];
+          pa[k]                     = free[k] != 0 ? acceleration : 0.;
+        }
     }
 
 
@@ -605,16 +613,20 @@ namespace PeriDEAL
       const unsigned int n        = u.locally_owned_size();
       const double       old_load = load_factor;
       double             work     = 0;
-      // Half step of the velocity, full step of the displacement.
+      double            *pu = u.begin(), *pv = v.begin(), *pa = a.begin();
+      const double      *free = free_dof.data(), *pl = load.begin();
+      // Half step of the velocity, full step of the displacement (of the
+      // free DoFs).
       for (unsigned int k = 0; k < n; ++k)
-        if (!is_prescribed[k])
-          {
-            const double half =
-              v.local_element(k) + 0.5 * dt * a.local_element(k);
-            v.local_element(k) = half;
-            u.local_element(k) += dt * half;
-            work += 0.5 * old_load * load.local_element(k) * dt * half;
-          }
+        {
+          const double half = pv[k] + 0.5 * dt * pa[k];
+          const double next = pu[k] + dt * half;
+          pv[k]             = free[k] != 0 ? half : pv[k];
+          pu[k]             = free[k] != 0 ? next : pu[k];
+        }
+      if (with_load)
+        for (unsigned int k = 0; k < n; ++k)
+          work += 0.5 * old_load * pl[k] * dt * pv[k] * free[k];
       // Prescribed components at the new time; their old values and forces
       // for the work of the reactions.
       std::vector<double> old_u(prescribed.size()), old_v(prescribed.size()),
@@ -636,13 +648,14 @@ namespace PeriDEAL
         (steps_per_run > 0 && step_number - loop_start_step == steps_per_run) ||
         step_number % energy_every_steps == 0;
       compute_acceleration(simulator, record);
+      if (with_load)
+        for (unsigned int k = 0; k < n; ++k)
+          work += 0.5 * load_factor * pl[k] * dt * pv[k] * free[k];
       for (unsigned int k = 0; k < n; ++k)
-        if (!is_prescribed[k])
-          {
-            work += 0.5 * load_factor * load.local_element(k) * dt *
-                    v.local_element(k);
-            v.local_element(k) += 0.5 * dt * a.local_element(k);
-          }
+        {
+          const double next = pv[k] + 0.5 * dt * pa[k];
+          pv[k]             = free[k] != 0 ? next : pv[k];
+        }
       for (unsigned int q = 0; q < prescribed.size(); ++q)
         {
           const unsigned int k = prescribed[q].index;

@@ -198,7 +198,9 @@ namespace PeriDEAL
         unsigned int index, node, component;
       };
       std::vector<Prescribed> prescribed;
-      std::vector<bool>       is_prescribed; // per local vector index
+      std::vector<bool>       is_prescribed;     // per local vector index
+      std::vector<double>     free_dof;          // 0 where prescribed, else 1
+      bool                    with_load = false; // any load anywhere
       VectorType              u, v, a, force, previous_force, load, mass;
       double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
       /// The elastic energy from the last compute_acceleration() with
