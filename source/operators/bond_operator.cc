@@ -254,6 +254,27 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    BondOperator<dim>::set_broken_bits(const unsigned int i)
+    {
+      const std::size_t  s    = slot[i];
+      const std::size_t  b    = s / 64;
+      const unsigned int lane = s % 64;
+      const std::size_t  n_k  = stencil.slot_offset.size();
+      if (block_mask_first[b] < 0)
+        {
+          block_mask_first[b] = mask_words.size();
+          mask_words.resize(mask_words.size() + n_k, 0);
+        }
+      std::uint64_t *words = mask_words.data() + block_mask_first[b];
+      // A node of the full stencil numbers its bonds in stencil order.
+      for (std::size_t k = 0; k < n_k; ++k)
+        if (bond_state->is_broken(i, k))
+          words[k] |= std::uint64_t(1) << lane;
+    }
+
+
+    template <int dim>
+    void
     BondOperator<dim>::make_runs()
     {
       const auto split = [&](const std::vector<unsigned int> &work,
@@ -263,8 +284,11 @@ namespace PeriDEAL
         gather.clear();
         std::vector<std::pair<std::size_t, unsigned int>> candidates;
         for (const unsigned int i : work)
-          if (use_lattice && run_eligible[i] && list_end[i] > list_first[i] &&
-              !(bond_state != nullptr && bond_state->any_broken(i)))
+          if (use_lattice && lists->has_full_stencil(i))
+            continue; // in the full chunks, its broken bonds masked
+          else if (use_lattice && run_eligible[i] &&
+                   list_end[i] > list_first[i] &&
+                   !(bond_state != nullptr && bond_state->any_broken(i)))
             candidates.emplace_back(slot[i], i);
           else
             gather.push_back(i);
@@ -362,6 +386,20 @@ namespace PeriDEAL
 
       make_chunks(true, theta_chunks);
       make_chunks(false, force_chunks);
+      full_theta_chunks.clear();
+      full_force_chunks.clear();
+      block_mask_first.clear();
+      mask_words.clear();
+      if (use_lattice)
+        {
+          make_chunks(true, full_theta_chunks, true);
+          make_chunks(false, full_force_chunks, true);
+          block_mask_first.assign((n_slots + 63) / 64, -1);
+          if (bond_state != nullptr)
+            for (unsigned int i = 0; i < n; ++i)
+              if (lists->has_full_stencil(i) && bond_state->any_broken(i))
+                set_broken_bits(i);
+        }
 
       theta_list_nodes.clear();
       force_list_nodes.clear();
@@ -455,7 +493,8 @@ namespace PeriDEAL
     template <int dim>
     void
     BondOperator<dim>::make_chunks(const bool          for_theta,
-                                   std::vector<Chunk> &chunks) const
+                                   std::vector<Chunk> &chunks,
+                                   const bool          with_broken) const
     {
       // Runs of consecutive slots of the nodes on the shared stencil that
       // need the pass: every owned node for the forces, every node with a
@@ -465,7 +504,8 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < n; ++i)
         if ((for_theta ? state_based && lists->has_list(i) :
                          i < nodes->n_owned()) &&
-            on_stencil(i))
+            (with_broken ? use_lattice && lists->has_full_stencil(i) :
+                           on_stencil(i)))
           slots.push_back(slot[i]);
       std::sort(slots.begin(), slots.end());
       chunks.clear();
@@ -489,6 +529,9 @@ namespace PeriDEAL
           build_work_lists();
           return;
         }
+      for (const unsigned int i : changed)
+        if (lists->has_full_stencil(i))
+          set_broken_bits(i);
       const unsigned int n_owned     = nodes->n_owned();
       const auto         needs_theta = [&](const unsigned int i) {
         return state_based && lists->has_list(i);
@@ -1023,7 +1066,10 @@ namespace PeriDEAL
     unsigned int
     BondOperator<dim>::n_run_nodes() const
     {
-      return force_list_nodes.size() - force_gather_nodes.size();
+      unsigned int count = 0;
+      for (const Run &run : force_runs)
+        count += run.length;
+      return count;
     }
 
 
@@ -1065,7 +1111,11 @@ namespace PeriDEAL
         (theta_gather_nodes.capacity() + force_gather_nodes.capacity()) *
           sizeof(unsigned int) +
         run_eligible.capacity() +
-        (theta_run_factor.size() + e_slot.size()) * sizeof(double);
+        (theta_run_factor.size() + e_slot.size()) * sizeof(double) +
+        (full_theta_chunks.capacity() + full_force_chunks.capacity()) *
+          sizeof(Chunk) +
+        block_mask_first.capacity() * sizeof(std::int64_t) +
+        mask_words.capacity() * sizeof(std::uint64_t);
       return bytes;
     }
 

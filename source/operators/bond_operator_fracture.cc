@@ -22,14 +22,49 @@ namespace PeriDEAL
       constexpr unsigned int node_grain  = 256;
 
       /// Consecutive slots and the stencil offsets to visit for them
-      /// (index == nullptr: all of them).
+      /// (index == nullptr: all of them); with broken bonds, the mask words
+      /// of the one or two blocks of 64 slots that they span (nullptr:
+      /// none broken there) and the first slot's place in its block.
       struct Block
       {
         std::size_t          first_slot;
         unsigned int         length;
         const std::uint16_t *index;
         std::size_t          n_index;
+        const std::uint64_t *mask_low  = nullptr;
+        const std::uint64_t *mask_high = nullptr;
+        unsigned int         shift     = 0;
+
+        /// The broken bonds of offset @p k: bit l for the slot first_slot + l.
+        std::uint64_t
+        broken(const std::size_t k) const
+        {
+          return (mask_low != nullptr ? mask_low[k] >> shift : 0) |
+                 (mask_high != nullptr ? mask_high[k] << (64 - shift) : 0);
+        }
       };
+
+      /// The Block of a chunk of nodes of the full stencil, with the mask
+      /// words of its blocks of 64 slots (BondOperator::block_mask_first).
+      template <typename ChunkType>
+      Block
+      masked_block(const ChunkType                  &chunk,
+                   const std::vector<std::int64_t>  &block_mask_first,
+                   const std::vector<std::uint64_t> &mask_words,
+                   const std::size_t                 n_offsets)
+      {
+        Block block{chunk.first_slot, chunk.length, nullptr, n_offsets};
+        const std::size_t b0 = chunk.first_slot / 64;
+        const std::size_t b1 = (chunk.first_slot + chunk.length - 1) / 64;
+        block.shift          = chunk.first_slot % 64;
+        if (block_mask_first[b0] >= 0)
+          block.mask_low = mask_words.data() + block_mask_first[b0];
+        // A chunk of at most 64 slots spans a second block only if it does
+        // not start at the first slot of a block (shift > 0).
+        if (b1 != b0 && block_mask_first[b1] >= 0)
+          block.mask_high = mask_words.data() + block_mask_first[b1];
+        return block;
+      }
     } // namespace
 
 
@@ -126,6 +161,7 @@ namespace PeriDEAL
             std::vector<ExceededBond> found;
             alignas(64) double        theta[chunk_size];
             alignas(64) double        failed[chunk_size];
+            alignas(64) double        gone_lane[chunk_size];
             for (std::size_t c = begin; c < end; ++c)
               {
                 const Block                blk   = block(c);
@@ -152,30 +188,52 @@ namespace PeriDEAL
                       }
                     const double *ci = s0_slot.data() + s0, *cj = ci + o;
                     double        n_failed = 0;
+                    const bool    masked =
+                      blk.mask_low != nullptr || blk.mask_high != nullptr;
+                    const std::uint64_t broken = masked ? blk.broken(k) : 0;
+                    // The mask as one double per lane (a vectorised test
+                    // in the lane loop; a bit test there is not).
+                    if (broken != 0)
+                      for (unsigned int l = 0; l < len; ++l)
+                        gone_lane[l] = double((broken >> l) & 1);
+                    // Bonds broken before (masked) count neither as intact
+                    // nor as newly failed.
+                    const auto lanes = [&](auto masked_tag) {
+                      constexpr bool with_mask = decltype(masked_tag)::value;
 #pragma omp simd reduction(+ : n_failed)
-                    for (unsigned int l = 0; l < len; ++l)
-                      {
-                        double e = 0;
-                        if constexpr (finite_kinematics)
-                          {
-                            double length2 = 0;
+                      for (unsigned int l = 0; l < len; ++l)
+                        {
+                          double e = 0;
+                          if constexpr (finite_kinematics)
+                            {
+                              double length2 = 0;
+#pragma GCC unroll 3
+                              for (unsigned int d = 0; d < dim; ++d)
+                                {
+                                  const double y =
+                                    xi[d] + (uj[d][l] - ui[d][l]);
+                                  length2 += y * y;
+                                }
+                              e = std::sqrt(length2) - r;
+                            }
+                          else
 #pragma GCC unroll 3
                             for (unsigned int d = 0; d < dim; ++d)
-                              {
-                                const double y = xi[d] + (uj[d][l] - ui[d][l]);
-                                length2 += y * y;
-                              }
-                            e = std::sqrt(length2) - r;
-                          }
-                        else
-#pragma GCC unroll 3
-                          for (unsigned int d = 0; d < dim; ++d)
-                            e += nk[d] * (uj[d][l] - ui[d][l]);
-                        const bool intact = e * inv_r < std::min(ci[l], cj[l]);
-                        theta[l] += intact ? g * e : 0.;
-                        failed[l] = intact ? 0. : 1.;
-                        n_failed += intact ? 0. : 1.;
-                      }
+                              e += nk[d] * (uj[d][l] - ui[d][l]);
+                          const bool below = e * inv_r < std::min(ci[l], cj[l]);
+                          bool       gone  = false;
+                          if constexpr (with_mask)
+                            gone = gone_lane[l] != 0;
+                          const bool intact = below && !gone;
+                          theta[l] += intact ? g * e : 0.;
+                          failed[l] = (below || gone) ? 0. : 1.;
+                          n_failed += (below || gone) ? 0. : 1.;
+                        }
+                    };
+                    if (broken != 0)
+                      lanes(std::true_type());
+                    else
+                      lanes(std::false_type());
                     if (n_failed > 0)
                       for (unsigned int l = 0; l < len; ++l)
                         if (failed[l] != 0)
@@ -197,11 +255,11 @@ namespace PeriDEAL
           },
           chunk_grain);
       };
-      sweep(theta_chunks.size(), [&](const std::size_t c) {
-        return Block{theta_chunks[c].first_slot,
-                     theta_chunks[c].length,
-                     nullptr,
-                     n_offsets};
+      sweep(full_theta_chunks.size(), [&](const std::size_t c) {
+        return masked_block(full_theta_chunks[c],
+                            block_mask_first,
+                            mask_words,
+                            n_offsets);
       });
       sweep(theta_runs.size(), [&](const std::size_t c) {
         const Run &run = theta_runs[c];
@@ -347,6 +405,7 @@ namespace PeriDEAL
             alignas(64) double        force[dim][chunk_size];
             alignas(64) double        failed[chunk_size];
             alignas(64) double        energy[chunk_size];
+            alignas(64) double        gone_lane[chunk_size];
             for (std::size_t c = begin; c < end; ++c)
               {
                 const Block                blk   = block(c);
@@ -384,11 +443,22 @@ namespace PeriDEAL
                       }
                     const double *tj = ti + o, *sj = si + o, *cj = ci + o;
                     double        n_failed = 0;
+                    const bool    masked =
+                      blk.mask_low != nullptr || blk.mask_high != nullptr;
+                    const std::uint64_t broken = masked ? blk.broken(k) : 0;
+                    // The mask as one double per lane (a vectorised test
+                    // in the lane loop; a bit test there is not).
+                    if (broken != 0)
+                      for (unsigned int l = 0; l < len; ++l)
+                        gone_lane[l] = double((broken >> l) & 1);
                     // Bond-based models (s = 1, no dilatation) skip the loads
-                    // of the state-based terms.
-                    const auto lanes = [&](auto state_based_tag) {
+                    // of the state-based terms; bonds broken before (masked)
+                    // count neither as intact nor as newly failed.
+                    const auto lanes = [&](auto state_based_tag,
+                                           auto masked_tag) {
                       constexpr bool with_state =
                         decltype(state_based_tag)::value;
+                      constexpr bool with_mask = decltype(masked_tag)::value;
 #pragma omp simd reduction(+ : n_failed)
                       for (unsigned int l = 0; l < len; ++l)
                         {
@@ -413,9 +483,12 @@ namespace PeriDEAL
                                 y[d] = nk[d];
                                 e += nk[d] * (uj[d][l] - ui[d][l]);
                               }
-                          const bool intact =
-                            e * inv_r < std::min(ci[l], cj[l]);
-                          double t;
+                          const bool below = e * inv_r < std::min(ci[l], cj[l]);
+                          bool       gone  = false;
+                          if constexpr (with_mask)
+                            gone = gone_lane[l] != 0;
+                          const bool intact = below && !gone;
+                          double     t;
                           if constexpr (with_state)
                             t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
                           else
@@ -426,14 +499,18 @@ namespace PeriDEAL
                             force[d][l] += ty * y[d];
                           if constexpr (with_energy)
                             energy[l] += intact ? b * e * e : 0.;
-                          failed[l] = intact ? 0. : 1.;
-                          n_failed += intact ? 0. : 1.;
+                          failed[l] = (below || gone) ? 0. : 1.;
+                          n_failed += (below || gone) ? 0. : 1.;
                         }
                     };
-                    if (sb)
-                      lanes(std::true_type());
+                    if (sb && broken != 0)
+                      lanes(std::true_type(), std::true_type());
+                    else if (sb)
+                      lanes(std::true_type(), std::false_type());
+                    else if (broken != 0)
+                      lanes(std::false_type(), std::true_type());
                     else
-                      lanes(std::false_type());
+                      lanes(std::false_type(), std::false_type());
                     if (n_failed > 0)
                       for (unsigned int l = 0; l < len; ++l)
                         if (failed[l] != 0)
@@ -452,11 +529,11 @@ namespace PeriDEAL
           },
           chunk_grain);
       };
-      sweep(force_chunks.size(), [&](const std::size_t c) {
-        return Block{force_chunks[c].first_slot,
-                     force_chunks[c].length,
-                     nullptr,
-                     n_offsets};
+      sweep(full_force_chunks.size(), [&](const std::size_t c) {
+        return masked_block(full_force_chunks[c],
+                            block_mask_first,
+                            mask_words,
+                            n_offsets);
       });
       sweep(force_runs.size(), [&](const std::size_t c) {
         const Run &run = force_runs[c];

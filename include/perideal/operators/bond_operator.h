@@ -350,9 +350,18 @@ namespace PeriDEAL
       std::vector<unsigned int> theta_gather_nodes, force_gather_nodes;
       std::vector<char>         run_eligible;
       AlignedVector<double>     theta_run_factor;
-      std::vector<unsigned int> owned_slots;
-      unsigned int              n_owned_stencil = 0;
-      std::size_t               bond_visits     = 0;
+      // The nonlinear passes on the lattice run every node with the full
+      // stencil in chunks, intact or not (full_*_chunks, fixed): the bonds
+      // that broke are masked by one bit per (stencil offset, slot),
+      // stored per block of 64 slots for the blocks that hold a node with
+      // a broken bond (block_mask_first[b]: its first word in mask_words,
+      // n_offsets words, or -1).
+      std::vector<Chunk>         full_theta_chunks, full_force_chunks;
+      std::vector<std::int64_t>  block_mask_first;
+      std::vector<std::uint64_t> mask_words;
+      std::vector<unsigned int>  owned_slots;
+      unsigned int               n_owned_stencil = 0;
+      std::size_t                bond_visits     = 0;
 
       // Scratch: displacement, force, s * theta and s per slot; the
       // critical stretch per slot (with failure).
@@ -408,9 +417,16 @@ namespace PeriDEAL
       find_run_eligible_nodes();
 
       /// Runs of consecutive slots of the stencil nodes that need the
-      /// dilatation pass (@p for_theta) or the force pass.
+      /// dilatation pass (@p for_theta) or the force pass; with
+      /// @p with_broken also the nodes of the full stencil with broken bonds.
       void
-      make_chunks(const bool for_theta, std::vector<Chunk> &chunks) const;
+      make_chunks(const bool          for_theta,
+                  std::vector<Chunk> &chunks,
+                  const bool          with_broken = false) const;
+
+      /// Set the mask bits of the broken bonds of node @p i (full stencil).
+      void
+      set_broken_bits(const unsigned int i);
 
       /**
        * After bonds of the nodes @p changed broke: shrink their list
