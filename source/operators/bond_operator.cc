@@ -228,7 +228,7 @@ namespace PeriDEAL
     {
       const unsigned int n = nodes->size();
       run_eligible.assign(n, 0);
-      if (!use_lattice)
+      if (!use_lattice || !surface_runs)
         return;
       // For every stencil offset o, the index of o - e_0 (-1 if outside).
       const auto                         &offsets = lists->stencil();

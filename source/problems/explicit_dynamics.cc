@@ -295,7 +295,7 @@ namespace PeriDEAL
           const bool stop = !last && steps_per_run > 0 &&
                             step_number - loop_start_step == steps_per_run;
           bool by_wall_time = false;
-          if (last || stop || step_number % energy_every_steps == 0)
+          if (records_energies())
             {
               record_energies(simulator);
               if (last ||
@@ -573,6 +573,17 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    ExplicitDynamics<dim>::records_energies() const
+    {
+      const bool last = step_number == n_steps;
+      const bool stop = !last && steps_per_run > 0 &&
+                        step_number - loop_start_step == steps_per_run;
+      return last || stop || step_number % energy_every_steps == 0;
+    }
+
+
+    template <int dim>
     void
     ExplicitDynamics<dim>::compute_acceleration(Simulator<dim> &simulator,
                                                 const bool      with_energy)
@@ -640,11 +651,7 @@ namespace PeriDEAL
       u.update_ghost_values();
       // The energy of this step comes with its forces when run() will
       // record it (the same test as there).
-      const bool record =
-        step_number == n_steps ||
-        (steps_per_run > 0 && step_number - loop_start_step == steps_per_run) ||
-        step_number % energy_every_steps == 0;
-      compute_acceleration(simulator, record);
+      compute_acceleration(simulator, records_energies());
       if (with_load)
         for (unsigned int k = 0; k < n; ++k)
           work += 0.5 * load_factor * pl[k] * dt * pv[k] * free[k];

@@ -124,6 +124,12 @@ namespace PeriDEAL
       compute_acceleration(Simulator<dim> &simulator,
                            const bool      with_energy = false);
 
+      /// Whether run() records the energies after the current step (the
+      /// last one, a stop for a restart, or every 'Energy every steps'):
+      /// step() then asks for the energy with the forces.
+      bool
+      records_energies() const;
+
       /// Energies and broken bonds now: one CSV row (collective).
       void
       record_energies(Simulator<dim> &simulator);
