@@ -183,6 +183,7 @@ main(int argc, char **argv)
   const MPI_Comm                   comm       = MPI_COMM_WORLD;
   bool                             quick      = false;
   std::string                      output_dir = "results/bond_operator";
+  std::vector<unsigned int>        selected;
   for (int a = 1; a < argc; ++a)
     {
       const std::string arg = argv[a];
@@ -190,10 +191,14 @@ main(int argc, char **argv)
         quick = true;
       else if (arg == "--output-dir" && a + 1 < argc)
         output_dir = argv[++a];
+      else if (arg == "--case" && a + 1 < argc)
+        selected.push_back(std::stoul(argv[++a]));
       else
         {
           std::cerr << "usage: perideal-bond-operator-throughput [--quick] "
-                       "[--output-dir DIR]\n";
+                       "[--output-dir DIR] [--case I]...\n"
+                       "  --case I: only the I-th case (from 0) of the list; "
+                       "repeatable\n";
           return 1;
         }
     }
@@ -235,6 +240,20 @@ main(int argc, char **argv)
                               {2, "bond-based", 9, 3},
                               {2, "bond-based", 9, 3, true}};
   const unsigned int repetitions = quick ? 2 : 5;
+  if (!selected.empty())
+    {
+      std::vector<Case> chosen;
+      for (const unsigned int k : selected)
+        {
+          AssertThrow(k < cases.size(),
+                      ExcMessage(
+                        "--case " + std::to_string(k) + ": there are only " +
+                        std::to_string(cases.size()) + " cases (0 to " +
+                        std::to_string(cases.size() - 1) + ")."));
+          chosen.push_back(cases[k]);
+        }
+      cases = chosen;
+    }
 
   std::vector<double> bandwidth(max_threads + 1, 0.);
   for (unsigned int t = 1; t <= max_threads; ++t)

@@ -207,28 +207,13 @@ namespace PeriDEAL
     }
 
 
-    namespace
-    {
-      /**
-       * Surface runs are built but switched off: measured back to back on
-       * one machine, they made the whole explicit run of a 40^3 cube 1.2x
-       * faster (exact partial volumes, m = 3), but apply() on the 64^3
-       * cube of perideal-bond-operator-throughput 1.46x slower (232
-       * against 340 M bond visits/s/core, 3D PMB), which profiles show
-       * running in the scalar remainder of the run loops. Until that is
-       * understood every surface node uses the gather loop.
-       */
-      constexpr bool surface_runs = false;
-    } // namespace
-
-
     template <int dim>
     void
     BondOperator<dim>::find_run_eligible_nodes()
     {
       const unsigned int n = nodes->size();
       run_eligible.assign(n, 0);
-      if (!use_lattice || !surface_runs)
+      if (!use_lattice)
         return;
       // For every stencil offset o, the index of o - e_0 (-1 if outside).
       const auto                         &offsets = lists->stencil();
@@ -262,7 +247,7 @@ namespace PeriDEAL
             bool invariant = bond_stencil_first[i + 1] > bond_stencil_first[i];
             for (const auto &[k, k_minus] : pairs)
               invariant = invariant && present[k] == present[k_minus];
-            run_eligible[i] = (surface_runs && invariant) ? 1 : 0;
+            run_eligible[i] = invariant ? 1 : 0;
           }
     }
 
@@ -292,7 +277,11 @@ namespace PeriDEAL
     void
     BondOperator<dim>::make_runs()
     {
-      const auto split = [&](const std::vector<unsigned int> &work,
+      run_index.clear();
+      // present[k]: offset k is a bond of the run being grown (cleared
+      // after each run, so the cost is the run's bonds, not the stencil's).
+      std::vector<char> present(use_lattice ? stencil.slot_offset.size() : 0);
+      const auto        split = [&](const std::vector<unsigned int> &work,
                              std::vector<Run>                &runs,
                              std::vector<unsigned int>       &gather) {
         runs.clear();
@@ -311,24 +300,37 @@ namespace PeriDEAL
         const std::uint16_t *index = list_stencil_index.data();
         for (std::size_t a = 0; a < candidates.size();)
           {
+            // The bonds of a node are in its list's order (that of the
+            // neighbour search); nodes of a run need the same set only.
             const unsigned int i     = candidates[a].second;
             const std::size_t  first = list_first[i];
             const std::size_t  size  = list_end[i] - first;
-            std::size_t        b     = a + 1;
+            for (std::size_t q = first; q < first + size; ++q)
+              present[index[q]] = 1;
+            std::size_t b = a + 1;
             while (b < candidates.size() && b - a < chunk_size &&
                    candidates[b].first == candidates[a].first + (b - a))
               {
                 const unsigned int j = candidates[b].second;
                 if (list_end[j] - list_first[j] != size ||
-                    !std::equal(index + first,
-                                index + first + size,
-                                index + list_first[j]))
+                    !std::all_of(index + list_first[j],
+                                 index + list_end[j],
+                                 [&](const std::uint16_t k) {
+                                   return present[k] != 0;
+                                 }))
                   break;
                 ++b;
               }
+            const std::size_t index_first = run_index.size();
+            run_index.insert(run_index.end(),
+                             index + first,
+                             index + first + size);
+            std::sort(run_index.begin() + index_first, run_index.end());
+            for (std::size_t q = first; q < first + size; ++q)
+              present[index[q]] = 0;
             runs.push_back({candidates[a].first,
                             static_cast<unsigned int>(b - a),
-                            first,
+                            index_first,
                             static_cast<unsigned int>(size)});
             a = b;
           }
@@ -1123,6 +1125,7 @@ namespace PeriDEAL
         (2 * dim + 2) * n_slots * sizeof(double) +
         s0_slot.size() * sizeof(double) +
         (theta_runs.capacity() + force_runs.capacity()) * sizeof(Run) +
+        run_index.capacity() * sizeof(std::uint16_t) +
         (theta_gather_nodes.capacity() + force_gather_nodes.capacity()) *
           sizeof(unsigned int) +
         run_eligible.capacity() +

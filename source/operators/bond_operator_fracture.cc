@@ -265,7 +265,7 @@ namespace PeriDEAL
         const Run &run = theta_runs[c];
         return Block{run.first_slot,
                      run.length,
-                     list_stencil_index.data() + run.index_first,
+                     run_index.data() + run.index_first,
                      run.n_index};
       });
 
@@ -539,7 +539,7 @@ namespace PeriDEAL
         const Run &run = force_runs[c];
         return Block{run.first_slot,
                      run.length,
-                     list_stencil_index.data() + run.index_first,
+                     run_index.data() + run.index_first,
                      run.n_index};
       });
 

@@ -479,13 +479,16 @@ namespace PeriDEAL
 
       const unsigned int n_stencil =
         Utilities::MPI::sum(bond_operator.n_stencil_nodes(), comm);
+      const unsigned int n_runs =
+        Utilities::MPI::sum(bond_operator.n_run_nodes(), comm);
       const std::size_t visits =
         Utilities::MPI::sum(bond_operator.n_bond_visits(), comm);
       simulator.get_pcout()
         << "[" << std::setw(8) << std::fixed << std::setprecision(2)
         << simulator.elapsed()
         << " s] explicit dynamics: " << simulator.get_summary().n_nodes
-        << " nodes (" << n_stencil << " on the shared stencil), " << visits
+        << " nodes (" << n_stencil << " on the shared stencil, " << n_runs
+        << " near the surface in runs along x), " << visits
         << " bond visits per step, "
         << (finite_kinematics ? "finite deformation" : "small strain")
         << ", critical stretch "

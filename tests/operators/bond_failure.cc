@@ -5,9 +5,11 @@
 // - forces with the deformed bond direction, f_i = sum_j V_i w_ij
 //   (t_ij + t_ji) (xi + eta)/|xi + eta|, extension e = |xi + eta| - |xi|,
 //   over the bonds whose stretch e/|xi| stays below the critical stretch;
-//   (surface nodes run one by one with gathers; after the commit, nodes
-//   of the full stencil with broken bonds stay in the stencil chunks with
-//   those bonds masked, which the test asserts happened);
+//   (the surface nodes whose neighbourhoods repeat along x run in runs of
+//   consecutive slots, the others one by one with gathers: both paths
+//   are in the sum, and the test asserts that runs were used; after the
+//   commit, nodes of the full stencil with broken bonds stay in the
+//   stencil chunks with those bonds masked, also asserted);
 // - the bonds found over it are exactly the pairs the brute force finds,
 //   and after commit_broken_bonds() they stay out;
 // - the elastic energy against sum_i V_i W_i (from its own pass, and from
@@ -226,6 +228,7 @@ check(const std::string &model_name,
   // the same pass, so its energy is the same sum.
   const double energy_before_error =
     std::abs(energy_before - brute_energy) / brute_energy;
+  const unsigned int n_run_nodes = Utilities::MPI::sum(op.n_run_nodes(), comm);
   // Nodes of the full stencil that lost bonds: the passes keep them in the
   // stencil chunks with their broken bonds masked.
   unsigned int n_masked = 0;
@@ -278,17 +281,21 @@ check(const std::string &model_name,
             << "\n  energy from the force pass before the commit, the same "
                "<= 1e-12: "
             << (energy_before_error <= 1e-12 ? "yes" : "NO")
+            << "\n  surface nodes evaluated in runs (after the commit) > 0: "
+            << (n_run_nodes > 0 ? "yes" : "NO")
             << "\n  stencil nodes with masked broken bonds (after the commit) "
                "> 0: "
             << (n_masked > 0 ? "yes" : "NO")
             << "\n  F = -dE/du by central differences <= 1e-6: "
             << (fd_error <= 1e-6 ? "yes" : "NO") << std::endl;
   if (relative > 1e-12 || n_committed != failed_pairs || energy_error > 1e-12 ||
-      energy_before_error > 1e-12 || fd_error > 1e-6 || n_masked == 0)
+      energy_before_error > 1e-12 || fd_error > 1e-6 || n_run_nodes == 0 ||
+      n_masked == 0)
     std::cout << "  (force " << relative << ", committed " << n_committed
               << ", energy " << energy_error << ", energy before "
               << energy_before_error << ", derivative " << fd_error
-              << ", masked nodes " << n_masked << ")" << std::endl;
+              << ", run nodes " << n_run_nodes << ", masked nodes " << n_masked
+              << ")" << std::endl;
 
   if (Utilities::MPI::n_mpi_processes(comm) == 1)
     {
