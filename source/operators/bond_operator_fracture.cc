@@ -65,6 +65,36 @@ namespace PeriDEAL
           block.mask_high = mask_words.data() + block_mask_first[b1];
         return block;
       }
+
+      /// Calls @p sweep (a pass's vectorised loop over Blocks) for the
+      /// chunks of the full stencil, with their broken bonds masked, and
+      /// then for the runs of surface nodes over their common offsets
+      /// (run_index): the same two sweeps in the dilatation and force
+      /// passes.
+      template <typename ChunkType, typename RunType, typename Sweep>
+      void
+      sweep_chunks_and_runs(const std::vector<ChunkType>     &chunks,
+                            const std::vector<RunType>       &runs,
+                            const std::vector<std::uint16_t> &run_index,
+                            const std::vector<std::int64_t>  &block_mask_first,
+                            const std::vector<std::uint64_t> &mask_words,
+                            const std::size_t                 n_offsets,
+                            const Sweep                      &sweep)
+      {
+        sweep(chunks.size(), [&](const std::size_t c) {
+          return masked_block(chunks[c],
+                              block_mask_first,
+                              mask_words,
+                              n_offsets);
+        });
+        sweep(runs.size(), [&](const std::size_t c) {
+          const RunType &run = runs[c];
+          return Block{run.first_slot,
+                       run.length,
+                       run_index.data() + run.index_first,
+                       run.n_index};
+        });
+      }
     } // namespace
 
 
@@ -255,19 +285,13 @@ namespace PeriDEAL
           },
           chunk_grain);
       };
-      sweep(full_theta_chunks.size(), [&](const std::size_t c) {
-        return masked_block(full_theta_chunks[c],
+      sweep_chunks_and_runs(full_theta_chunks,
+                            theta_runs,
+                            run_index,
                             block_mask_first,
                             mask_words,
-                            n_offsets);
-      });
-      sweep(theta_runs.size(), [&](const std::size_t c) {
-        const Run &run = theta_runs[c];
-        return Block{run.first_slot,
-                     run.length,
-                     run_index.data() + run.index_first,
-                     run.n_index};
-      });
+                            n_offsets,
+                            sweep);
 
       parallel::apply_to_subranges(
         std::size_t(0),
@@ -529,19 +553,13 @@ namespace PeriDEAL
           },
           chunk_grain);
       };
-      sweep(full_force_chunks.size(), [&](const std::size_t c) {
-        return masked_block(full_force_chunks[c],
+      sweep_chunks_and_runs(full_force_chunks,
+                            force_runs,
+                            run_index,
                             block_mask_first,
                             mask_words,
-                            n_offsets);
-      });
-      sweep(force_runs.size(), [&](const std::size_t c) {
-        const Run &run = force_runs[c];
-        return Block{run.first_slot,
-                     run.length,
-                     run_index.data() + run.index_first,
-                     run.n_index};
-      });
+                            n_offsets,
+                            sweep);
 
       parallel::apply_to_subranges(
         std::size_t(0),
