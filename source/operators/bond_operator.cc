@@ -4,6 +4,7 @@
 #include <perideal/operators/bond_operator.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 
 namespace PeriDEAL
@@ -105,12 +106,27 @@ namespace PeriDEAL
         if (lists->has_full_stencil(i))
           m[i] = m0;
         else if (lists->has_list(i))
-          for (const auto &bond : lists->bonds(i))
-            {
-              const double r =
-                (*nodes)[i].location.distance((*nodes)[bond.neighbor].location);
-              m[i] += model->influence(r, horizon) * r * r * bond.weight;
-            }
+          {
+            // Summed in the order of the bond vectors (lexicographic): the
+            // neighbour search's order may depend on the partition, and
+            // m_i must not, to the last bit.
+            std::vector<std::pair<std::array<double, dim>, double>> terms;
+            for (const auto &bond : lists->bonds(i))
+              {
+                const Tensor<1, dim> xi =
+                  (*nodes)[bond.neighbor].location - (*nodes)[i].location;
+                const double            r = xi.norm();
+                std::array<double, dim> key;
+                for (unsigned int d = 0; d < dim; ++d)
+                  key[d] = xi[d];
+                terms.emplace_back(key,
+                                   model->influence(r, horizon) * r * r *
+                                     bond.weight);
+              }
+            std::sort(terms.begin(), terms.end());
+            for (const auto &term : terms)
+              m[i] += term.second;
+          }
 
       // The shared stencil: slot offsets and per-offset constants.
       stencil = Stencil();
@@ -454,6 +470,11 @@ namespace PeriDEAL
                       list_stencil_index.push_back(
                         full ? k :
                                bond_stencil_index[bond_stencil_first[i] + k]);
+                  // In increasing stencil order: the neighbour search's
+                  // order may depend on the partition, and a node's sum
+                  // must not.
+                  std::sort(list_stencil_index.begin() + list_first[i],
+                            list_stencil_index.end());
                   const std::size_t n_bonds =
                     list_stencil_index.size() - list_first[i];
                   bond_visits += (needs_theta[i] ? n_bonds : 0) +
@@ -478,6 +499,16 @@ namespace PeriDEAL
                   bond.b = volume * w * model->extension_constant(r, horizon);
                   list_bonds.push_back(bond);
                 });
+              // In the order of the bond vectors, not the neighbour
+              // search's (which may depend on the partition).
+              std::sort(list_bonds.begin() + list_first[i],
+                        list_bonds.end(),
+                        [](const ListBond &a, const ListBond &b) {
+                          for (unsigned int d = 0; d < dim; ++d)
+                            if (a.n[d] * a.r != b.n[d] * b.r)
+                              return a.n[d] * a.r < b.n[d] * b.r;
+                          return false;
+                        });
               const std::size_t n_bonds = list_bonds.size() - list_first[i];
               bond_visits +=
                 (needs_theta[i] ? n_bonds : 0) + (needs_force[i] ? n_bonds : 0);
@@ -559,13 +590,17 @@ namespace PeriDEAL
           (is_listed[i] ? listed : newcomers).push_back(i);
 
       // The intact bonds of node i as stencil indices, from position pos.
+      // (In increasing stencil order, as in build_work_lists().)
       const auto write_intact = [&](const unsigned int i, std::size_t pos) {
         const unsigned int n_all = lists->n_bonds(i);
         const bool         full  = lists->has_full_stencil(i);
+        const std::size_t  start = pos;
         for (unsigned int k = 0; k < n_all; ++k)
           if (!bond_state->is_broken(i, k))
             list_stencil_index[pos++] =
               full ? k : bond_stencil_index[bond_stencil_first[i] + k];
+        std::sort(list_stencil_index.begin() + start,
+                  list_stencil_index.begin() + pos);
         return pos;
       };
       // Nodes already on lists lost bonds: their segments shrink in place
@@ -1087,6 +1122,17 @@ namespace PeriDEAL
       for (const Run &run : force_runs)
         count += run.length;
       return count;
+    }
+
+
+    template <int dim>
+    unsigned int
+    BondOperator<dim>::max_run_length() const
+    {
+      unsigned int longest = 0;
+      for (const Run &run : force_runs)
+        longest = std::max(longest, run.length);
+      return longest;
     }
 
 

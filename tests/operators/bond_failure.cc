@@ -7,7 +7,8 @@
 //   over the bonds whose stretch e/|xi| stays below the critical stretch;
 //   (the surface nodes whose neighbourhoods repeat along x run in runs of
 //   consecutive slots, the others one by one with gathers: both paths
-//   are in the sum, and the test asserts that runs were used; after the
+//   are in the sum, and the test asserts that runs of two or more nodes
+//   were used before the commit and runs after it; after the
 //   commit, nodes of the full stencil with broken bonds stay in the
 //   stencil chunks with those bonds masked, also asserted);
 // - the bonds found over it are exactly the pairs the brute force finds,
@@ -111,6 +112,10 @@ check(const std::string &model_name,
         u[nodes[i].dofs[c]] = value[c];
     }
   u.update_ghost_values();
+  // Surface runs with more than one node exist before the commit (a run
+  // of one node would pass the run path without vectorising anything).
+  const unsigned int longest_run =
+    Utilities::MPI::max(op.max_run_length(), comm);
   // The forces before the commit come with the energy of the same pass.
   const double      energy_before = op.apply_with_energy(u, force);
   const std::size_t n_committed   = op.commit_broken_bonds(state);
@@ -283,19 +288,22 @@ check(const std::string &model_name,
             << (energy_before_error <= 1e-12 ? "yes" : "NO")
             << "\n  surface nodes evaluated in runs (after the commit) > 0: "
             << (n_run_nodes > 0 ? "yes" : "NO")
+            << "\n  longest surface run (before the commit) >= 2 nodes: "
+            << (longest_run >= 2 ? "yes" : "NO")
             << "\n  stencil nodes with masked broken bonds (after the commit) "
                "> 0: "
             << (n_masked > 0 ? "yes" : "NO")
             << "\n  F = -dE/du by central differences <= 1e-6: "
             << (fd_error <= 1e-6 ? "yes" : "NO") << std::endl;
   if (relative > 1e-12 || n_committed != failed_pairs || energy_error > 1e-12 ||
-      energy_before_error > 1e-12 || fd_error > 1e-6 || n_run_nodes == 0 ||
-      n_masked == 0)
-    std::cout << "  (force " << relative << ", committed " << n_committed
-              << ", energy " << energy_error << ", energy before "
-              << energy_before_error << ", derivative " << fd_error
-              << ", run nodes " << n_run_nodes << ", masked nodes " << n_masked
-              << ")" << std::endl;
+      relative_after > 1e-12 || energy_before_error > 1e-12 ||
+      fd_error > 1e-6 || n_run_nodes == 0 || longest_run < 2 || n_masked == 0)
+    std::cout << "  (force " << relative << ", after the commit "
+              << relative_after << ", committed " << n_committed << ", energy "
+              << energy_error << ", energy before " << energy_before_error
+              << ", derivative " << fd_error << ", run nodes " << n_run_nodes
+              << ", longest run " << longest_run << ", masked nodes "
+              << n_masked << ")" << std::endl;
 
   if (Utilities::MPI::n_mpi_processes(comm) == 1)
     {

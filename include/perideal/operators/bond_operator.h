@@ -244,6 +244,11 @@ namespace PeriDEAL
       unsigned int
       n_run_nodes() const;
 
+      /// The most nodes in one run of the force pass (0 without runs); 1
+      /// would mean that no run found a partner, i.e. nothing vectorised.
+      unsigned int
+      max_run_length() const;
+
       /// Bond visits of one apply() on this process (both passes).
       std::size_t
       n_bond_visits() const;
