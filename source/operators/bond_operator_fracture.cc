@@ -10,7 +10,14 @@
 #include <type_traits>
 
 // The passes of BondOperator with finite kinematics and bond failure
-// (explicit dynamics and fracture), compiled with the bond-loop flags.
+// (explicit dynamics and fracture), compiled with the bond-loop flags and
+// without floating-point contraction (-ffp-contract=off). Where a chunk or
+// run starts depends on the partition, so a node's lane may be evaluated in
+// a loop's vector body on one partition and in its scalar remainder on
+// another; the compiler may fuse a multiply-add in one and not the other.
+// The lane loops therefore spell their multiply-adds out (mul_add), which
+// both paths round alike: a node's forces, and so its bond failures,
+// are bitwise the same on every partition.
 
 namespace PeriDEAL
 {
@@ -18,6 +25,20 @@ namespace PeriDEAL
   {
     namespace
     {
+      /// a b + c, fused where the processor has a fast fused multiply-add
+      /// (std::fma, one rounding), else two roundings. Either way the
+      /// vector body and the scalar remainder of a lane loop round alike,
+      /// as this file is compiled without implicit contraction.
+      inline double
+      mul_add(const double a, const double b, const double c)
+      {
+#ifdef FP_FAST_FMA
+        return std::fma(a, b, c);
+#else
+        return a * b + c;
+#endif
+      }
+
       constexpr unsigned int chunk_grain = 4;
       constexpr unsigned int node_grain  = 256;
 
@@ -242,14 +263,14 @@ namespace PeriDEAL
                                 {
                                   const double y =
                                     xi[d] + (uj[d][l] - ui[d][l]);
-                                  length2 += y * y;
+                                  length2 = mul_add(y, y, length2);
                                 }
                               e = std::sqrt(length2) - r;
                             }
                           else
 #pragma GCC unroll 3
                             for (unsigned int d = 0; d < dim; ++d)
-                              e += nk[d] * (uj[d][l] - ui[d][l]);
+                              e = mul_add(nk[d], uj[d][l] - ui[d][l], e);
                           const bool below = e * inv_r < std::min(ci[l], cj[l]);
                           bool       gone  = false;
                           if constexpr (with_mask)
@@ -493,8 +514,8 @@ namespace PeriDEAL
 #pragma GCC unroll 3
                               for (unsigned int d = 0; d < dim; ++d)
                                 {
-                                  y[d] = xi[d] + (uj[d][l] - ui[d][l]);
-                                  length2 += y[d] * y[d];
+                                  y[d]    = xi[d] + (uj[d][l] - ui[d][l]);
+                                  length2 = mul_add(y[d], y[d], length2);
                                 }
                               const double length = std::sqrt(length2);
                               e                   = length - r;
@@ -505,7 +526,7 @@ namespace PeriDEAL
                             for (unsigned int d = 0; d < dim; ++d)
                               {
                                 y[d] = nk[d];
-                                e += nk[d] * (uj[d][l] - ui[d][l]);
+                                e    = mul_add(nk[d], uj[d][l] - ui[d][l], e);
                               }
                           const bool below = e * inv_r < std::min(ci[l], cj[l]);
                           bool       gone  = false;
@@ -514,13 +535,15 @@ namespace PeriDEAL
                           const bool intact = below && !gone;
                           double     t;
                           if constexpr (with_state)
-                            t = a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                            t = mul_add(a,
+                                        ti[l] + tj[l],
+                                        b * (si[l] + sj[l]) * e);
                           else
                             t = 2 * b * e;
                           const double ty = intact ? t * scale : 0.;
 #pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
-                            force[d][l] += ty * y[d];
+                            force[d][l] = mul_add(ty, y[d], force[d][l]);
                           if constexpr (with_energy)
                             energy[l] += intact ? b * e * e : 0.;
                           failed[l] = (below || gone) ? 0. : 1.;
