@@ -217,6 +217,23 @@ namespace PeriDEAL
                   lists->stencil_index(i, bond.neighbor));
             bond_stencil_first[i + 1] = bond_stencil_index.size();
           }
+      // The same bonds' numbers k in increasing stencil index: lists are
+      // written in this order, fixed by the bonds (the neighbour search's
+      // order may depend on the partition, and a node's sum must not).
+      bond_in_stencil_order.resize(bond_stencil_index.size());
+      if (use_lattice)
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const std::size_t first = bond_stencil_first[i];
+            const std::size_t size  = bond_stencil_first[i + 1] - first;
+            std::uint16_t    *order = bond_in_stencil_order.data() + first;
+            for (std::size_t k = 0; k < size; ++k)
+              order[k] = static_cast<std::uint16_t>(k);
+            std::sort(order, order + size, [&](const auto a, const auto b) {
+              return bond_stencil_index[first + a] <
+                     bond_stencil_index[first + b];
+            });
+          }
 
       find_run_eligible_nodes();
       build_work_lists();
@@ -463,18 +480,19 @@ namespace PeriDEAL
                   // index found once (bond_stencil_index) and kept, so
                   // that a re-sort after bonds broke costs a bit test per
                   // bond, not a lattice look-up.
+                  // In increasing stencil order (bond_in_stencil_order; a
+                  // node of the full stencil numbers its bonds so).
                   const unsigned int n_all = lists->n_bonds(i);
                   const bool         full  = lists->has_full_stencil(i);
-                  for (unsigned int k = 0; k < n_all; ++k)
-                    if (bond_state == nullptr || !bond_state->is_broken(i, k))
-                      list_stencil_index.push_back(
-                        full ? k :
-                               bond_stencil_index[bond_stencil_first[i] + k]);
-                  // In increasing stencil order: the neighbour search's
-                  // order may depend on the partition, and a node's sum
-                  // must not.
-                  std::sort(list_stencil_index.begin() + list_first[i],
-                            list_stencil_index.end());
+                  const std::size_t  first = bond_stencil_first[i];
+                  for (unsigned int q = 0; q < n_all; ++q)
+                    {
+                      const unsigned int k =
+                        full ? q : bond_in_stencil_order[first + q];
+                      if (bond_state == nullptr || !bond_state->is_broken(i, k))
+                        list_stencil_index.push_back(
+                          full ? k : bond_stencil_index[first + k]);
+                    }
                   const std::size_t n_bonds =
                     list_stencil_index.size() - list_first[i];
                   bond_visits += (needs_theta[i] ? n_bonds : 0) +
@@ -594,13 +612,14 @@ namespace PeriDEAL
       const auto write_intact = [&](const unsigned int i, std::size_t pos) {
         const unsigned int n_all = lists->n_bonds(i);
         const bool         full  = lists->has_full_stencil(i);
-        const std::size_t  start = pos;
-        for (unsigned int k = 0; k < n_all; ++k)
-          if (!bond_state->is_broken(i, k))
-            list_stencil_index[pos++] =
-              full ? k : bond_stencil_index[bond_stencil_first[i] + k];
-        std::sort(list_stencil_index.begin() + start,
-                  list_stencil_index.begin() + pos);
+        const std::size_t  first = bond_stencil_first[i];
+        for (unsigned int q = 0; q < n_all; ++q)
+          {
+            const unsigned int k = full ? q : bond_in_stencil_order[first + q];
+            if (!bond_state->is_broken(i, k))
+              list_stencil_index[pos++] =
+                full ? k : bond_stencil_index[first + k];
+          }
         return pos;
       };
       // Nodes already on lists lost bonds: their segments shrink in place
@@ -1164,14 +1183,14 @@ namespace PeriDEAL
           sizeof(unsigned int) +
         list_first.capacity() * sizeof(std::size_t) +
         list_bonds.capacity() * sizeof(ListBond) +
-        (list_stencil_index.capacity() + bond_stencil_index.capacity()) *
+        (list_stencil_index.capacity() + bond_stencil_index.capacity() +
+         bond_in_stencil_order.capacity() + run_index.capacity()) *
           sizeof(std::uint16_t) +
         bond_stencil_first.capacity() * sizeof(std::size_t) +
         list_theta_scale.capacity() * sizeof(double) +
         (2 * dim + 2) * n_slots * sizeof(double) +
         s0_slot.size() * sizeof(double) +
         (theta_runs.capacity() + force_runs.capacity()) * sizeof(Run) +
-        run_index.capacity() * sizeof(std::uint16_t) +
         (theta_gather_nodes.capacity() + force_gather_nodes.capacity()) *
           sizeof(unsigned int) +
         run_eligible.capacity() +

@@ -347,6 +347,9 @@ namespace PeriDEAL
       // every bond (broken or not), in bond order.
       std::vector<std::uint16_t> bond_stencil_index;
       std::vector<std::size_t>   bond_stencil_first;
+      // Per node with a stored list on the lattice: its bonds' numbers in
+      // increasing stencil index (the order lists are written in).
+      std::vector<std::uint16_t> bond_in_stencil_order;
       std::vector<double>        list_theta_scale; // m_0 / m_i per node
       // The list nodes of the nonlinear passes split into runs (Run) and
       // the rest, evaluated node by node with gathers. run_eligible[i]:
