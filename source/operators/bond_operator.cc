@@ -333,8 +333,10 @@ namespace PeriDEAL
         const std::uint16_t *index = list_stencil_index.data();
         for (std::size_t a = 0; a < candidates.size();)
           {
-            // The bonds of a node are in its list's order (that of the
-            // neighbour search); nodes of a run need the same set only.
+            // Nodes of a run need the same set of offsets. (Lists are
+            // written in stencil order, so the head's copy below is sorted
+            // already; the sort keeps run_index increasing whatever order
+            // a list is given.)
             const unsigned int i     = candidates[a].second;
             const std::size_t  first = list_first[i];
             const std::size_t  size  = list_end[i] - first;
