@@ -102,6 +102,7 @@ namespace PeriDEAL
         }
       stencil_weighted_volume = m0;
       m.assign(n, 0.);
+      std::vector<std::pair<std::array<double, dim>, double>> terms;
       for (unsigned int i = 0; i < n; ++i)
         if (lists->has_full_stencil(i))
           m[i] = m0;
@@ -110,7 +111,7 @@ namespace PeriDEAL
             // Summed in the order of the bond vectors (lexicographic): the
             // neighbour search's order may depend on the partition, and
             // m_i must not, to the last bit.
-            std::vector<std::pair<std::array<double, dim>, double>> terms;
+            terms.clear();
             for (const auto &bond : lists->bonds(i))
               {
                 const Tensor<1, dim> xi =
@@ -310,11 +311,7 @@ namespace PeriDEAL
     void
     BondOperator<dim>::make_runs()
     {
-      run_index.clear();
-      // present[k]: offset k is a bond of the run being grown (cleared
-      // after each run, so the cost is the run's bonds, not the stencil's).
-      std::vector<char> present(use_lattice ? stencil.slot_offset.size() : 0);
-      const auto        split = [&](const std::vector<unsigned int> &work,
+      const auto split = [&](const std::vector<unsigned int> &work,
                              std::vector<Run>                &runs,
                              std::vector<unsigned int>       &gather) {
         runs.clear();
@@ -333,39 +330,26 @@ namespace PeriDEAL
         const std::uint16_t *index = list_stencil_index.data();
         for (std::size_t a = 0; a < candidates.size();)
           {
-            // Nodes of a run need the same set of offsets. (Lists are
-            // written in stencil order, so the head's copy below is sorted
-            // already; the sort keeps run_index increasing whatever order
-            // a list is given.)
+            // Lists are written in increasing stencil order, so nodes
+            // with the same set of offsets have equal segments.
             const unsigned int i     = candidates[a].second;
             const std::size_t  first = list_first[i];
             const std::size_t  size  = list_end[i] - first;
-            for (std::size_t q = first; q < first + size; ++q)
-              present[index[q]] = 1;
-            std::size_t b = a + 1;
+            std::size_t        b     = a + 1;
             while (b < candidates.size() && b - a < chunk_size &&
                    candidates[b].first == candidates[a].first + (b - a))
               {
                 const unsigned int j = candidates[b].second;
                 if (list_end[j] - list_first[j] != size ||
-                    !std::all_of(index + list_first[j],
-                                 index + list_end[j],
-                                 [&](const std::uint16_t k) {
-                                   return present[k] != 0;
-                                 }))
+                    !std::equal(index + first,
+                                index + first + size,
+                                index + list_first[j]))
                   break;
                 ++b;
               }
-            const std::size_t index_first = run_index.size();
-            run_index.insert(run_index.end(),
-                             index + first,
-                             index + first + size);
-            std::sort(run_index.begin() + index_first, run_index.end());
-            for (std::size_t q = first; q < first + size; ++q)
-              present[index[q]] = 0;
             runs.push_back({candidates[a].first,
                             static_cast<unsigned int>(b - a),
-                            index_first,
+                            first,
                             static_cast<unsigned int>(size)});
             a = b;
           }
@@ -1186,7 +1170,7 @@ namespace PeriDEAL
         list_first.capacity() * sizeof(std::size_t) +
         list_bonds.capacity() * sizeof(ListBond) +
         (list_stencil_index.capacity() + bond_stencil_index.capacity() +
-         bond_in_stencil_order.capacity() + run_index.capacity()) *
+         bond_in_stencil_order.capacity()) *
           sizeof(std::uint16_t) +
         bond_stencil_first.capacity() * sizeof(std::size_t) +
         list_theta_scale.capacity() * sizeof(double) +

@@ -90,17 +90,18 @@ namespace PeriDEAL
       /// Calls @p sweep (a pass's vectorised loop over Blocks) for the
       /// chunks of the full stencil, with their broken bonds masked, and
       /// then for the runs of surface nodes over their common offsets
-      /// (run_index): the same two sweeps in the dilatation and force
+      /// (list_stencil_index): the same two sweeps in the dilatation and force
       /// passes.
       template <typename ChunkType, typename RunType, typename Sweep>
       void
-      sweep_chunks_and_runs(const std::vector<ChunkType>     &chunks,
-                            const std::vector<RunType>       &runs,
-                            const std::vector<std::uint16_t> &run_index,
-                            const std::vector<std::int64_t>  &block_mask_first,
-                            const std::vector<std::uint64_t> &mask_words,
-                            const std::size_t                 n_offsets,
-                            const Sweep                      &sweep)
+      sweep_chunks_and_runs(
+        const std::vector<ChunkType>     &chunks,
+        const std::vector<RunType>       &runs,
+        const std::vector<std::uint16_t> &list_stencil_index,
+        const std::vector<std::int64_t>  &block_mask_first,
+        const std::vector<std::uint64_t> &mask_words,
+        const std::size_t                 n_offsets,
+        const Sweep                      &sweep)
       {
         sweep(chunks.size(), [&](const std::size_t c) {
           return masked_block(chunks[c],
@@ -112,7 +113,7 @@ namespace PeriDEAL
           const RunType &run = runs[c];
           return Block{run.first_slot,
                        run.length,
-                       run_index.data() + run.index_first,
+                       list_stencil_index.data() + run.index_first,
                        run.n_index};
         });
       }
@@ -308,7 +309,7 @@ namespace PeriDEAL
       };
       sweep_chunks_and_runs(full_theta_chunks,
                             theta_runs,
-                            run_index,
+                            list_stencil_index,
                             block_mask_first,
                             mask_words,
                             n_offsets,
@@ -578,7 +579,7 @@ namespace PeriDEAL
       };
       sweep_chunks_and_runs(full_force_chunks,
                             force_runs,
-                            run_index,
+                            list_stencil_index,
                             block_mask_first,
                             mask_words,
                             n_offsets,

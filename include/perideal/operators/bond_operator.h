@@ -278,12 +278,12 @@ namespace PeriDEAL
       /**
        * A run of consecutive slots of intact nodes off the shared stencil
        * (near the surface) whose bonds are the same set of stencil
-       * offsets, run_index[index_first, index_first + n_index) in
-       * increasing order: evaluated like a Chunk, vectorised over the
-       * slots, but over those offsets only, instead of one gather loop per
-       * node. The order is the set's own, so a node of a run sums its bonds
-       * in the same order whichever node heads the run (the partition
-       * decides that).
+       * offsets, the head's list_stencil_index[index_first, index_first +
+       * n_index): evaluated like a Chunk, vectorised over the slots, but
+       * over those offsets only, instead of one gather loop per node.
+       * Lists are written in increasing stencil order, so equal sets are
+       * equal segments, and a node of a run sums its bonds in the same
+       * order whichever node heads the run (the partition decides that).
        */
       struct Run
       {
@@ -357,11 +357,10 @@ namespace PeriDEAL
       // slot axis wherever both are inside its horizon (a node-local test,
       // so every partition treats a node alike); it joins a run while it
       // has no broken bond. theta_run_factor: s_i m_0 / m_i per slot.
-      std::vector<Run>           theta_runs, force_runs;
-      std::vector<std::uint16_t> run_index;
-      std::vector<unsigned int>  theta_gather_nodes, force_gather_nodes;
-      std::vector<char>          run_eligible;
-      AlignedVector<double>      theta_run_factor;
+      std::vector<Run>          theta_runs, force_runs;
+      std::vector<unsigned int> theta_gather_nodes, force_gather_nodes;
+      std::vector<char>         run_eligible;
+      AlignedVector<double>     theta_run_factor;
       // The nonlinear passes on the lattice run every node with the full
       // stencil in chunks, intact or not (full_*_chunks, fixed): the bonds
       // that broke are masked by one bit per (stencil offset, slot),
