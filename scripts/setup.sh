@@ -15,10 +15,15 @@ case "$mode" in
 esac
 
 # Build: deal.II 9.4 (with Trilinos, p4est, PETSc, MUMPS), compilers, MPI.
-# Tests: numdiff. Reference generators and benchmark plots: python3 with
-# mpmath and matplotlib (Debian's /usr/bin/python3).
+# Tests: numdiff, mpirun (openmpi-bin); the scripts use only what a minimal
+# Debian system has besides (bash, sed, mawk, grep, coreutils, diffutils):
+# tables are printed by bench/csv_table.awk, not util-linux's column.
+# Reference generators, benchmark references and plots: Debian's
+# /usr/bin/python3 with numpy, scipy, mpmath and matplotlib. LAMMPS, used
+# only by the side-by-side benchmark, is not installed here (that script
+# says so and how to get it).
 packages=(libdeal.ii-dev cmake make g++ openmpi-bin libopenmpi-dev numdiff
-          python3 python3-mpmath python3-matplotlib)
+          python3 python3-numpy python3-scipy python3-mpmath python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" \

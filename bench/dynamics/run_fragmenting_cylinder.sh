@@ -62,7 +62,7 @@ echo "$cases" | while read -r h horizon end every ranks threads; do
   awk -F, 'NR == 2 { e0 = $3 + $4 } NR > 1 { if ($3 + $4 > e0 * (1 + 1e-9)) bad = $1 }
     END { if (bad != "") { print "FAIL: energy grows at t = " bad; exit 1 } }' "$work/$name/energies.csv"
 done
-column -s, -t "$csv"
+awk -F, -f "$here/../csv_table.awk" "$csv"
 if [ "$quick" = "--quick" ]; then
   a="$out/energies_cyl_h0.0025_np1.csv"; b="$out/energies_cyl_h0.0025_np2.csv"
   diff <(cut -d, -f2,7 "$a") <(cut -d, -f2,7 "$b") > /dev/null \

@@ -120,4 +120,4 @@ PY
   done
 done
 /usr/bin/python3 "$here/plot_lammps_comparison.py" "$out" || echo "(no plot: /usr/bin/python3 lacks matplotlib, Debian package python3-matplotlib)"
-column -s, -t "$csv"
+awk -F, -f "$here/../csv_table.awk" "$csv"

@@ -50,5 +50,5 @@ done <<< "$cases"
 
 cd "$out"
 "$python" "$here/wave_dispersion.py" report "$out" $names
-column -s, -t wave_dispersion.csv
+awk -F, -f "$here/../csv_table.awk" wave_dispersion.csv
 echo "Written: $out/wave_dispersion.csv, $out/wave_dispersion.png"
