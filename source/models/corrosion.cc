@@ -167,6 +167,7 @@ namespace PeriDEAL
                                   "give a value in [0, C_sat)"));
       interface_model       = prm.get("Interface model");
       current_density       = prm.get_double("Current density");
+      current_density_text  = prm.get("Current density");
       valence               = prm.get_double("Valence");
       interface_diffusivity = prm.get_double("Interface diffusivity");
       if (interface_model == "dissolution rate")
@@ -380,6 +381,19 @@ namespace PeriDEAL
       if (rho > 0)
         return c_sat / (rho * setup.op.largest_row_sum());
       return std::numeric_limits<double>::infinity();
+    }
+
+
+    template <int dim>
+    typename DiffusionModel<dim>::TimeStepLimit
+    Corrosion<dim>::time_step_limit() const
+    {
+      return {"no node may gain more than '" + section +
+                "/Saturation concentration' = " + c_sat_text +
+                " by dissolution in one step at 'Current density' = " +
+                current_density_text,
+              section + "/Current density",
+              current_density_text};
     }
 
 

@@ -33,6 +33,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    typename DiffusionModel<dim>::TimeStepLimit
+    DiffusionModel<dim>::time_step_limit() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
     void
     DiffusionModel<dim>::after_step(const DiffusionSetup<dim> &,
                                     const double,

@@ -235,12 +235,20 @@ namespace PeriDEAL
       boundary_value->set_time(t);
       if (layer_values == "function")
         for (const auto i : dirichlet_nodes)
-          x.local_element(op.vector_index(i)) =
-            boundary_value->value((*nodes)[i].location);
+          {
+            const double g = boundary_value->value((*nodes)[i].location);
+            finite_check.value(g, boundary_value_entry, (*nodes)[i].location,
+                               true, t);
+            x.local_element(op.vector_index(i)) = g;
+          }
       else if (layer_values == "surface value")
         for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
-          x.local_element(op.vector_index(dirichlet_nodes[k])) =
-            boundary_value->value(surface_points[k]);
+          {
+            const double g = boundary_value->value(surface_points[k]);
+            finite_check.value(g, boundary_value_entry, surface_points[k],
+                               true, t);
+            x.local_element(op.vector_index(dirichlet_nodes[k])) = g;
+          }
       if (reflection_passes == 0)
         return;
       // Reflections read the free nodes (level 1) or layer nodes of a
@@ -257,10 +265,16 @@ namespace PeriDEAL
       const double inverse_diffusivity = 1. / kernel.diffusivity();
       for (unsigned int k = 0; k < reflections.size(); ++k)
         {
-          const auto &r       = reflections[k];
-          reflection_shift[k] = r.odd ? 2 * boundary_value->value(r.surface) :
-                                        r.distance * inverse_diffusivity *
-                                          boundary_flux->value(r.surface);
+          const auto  &r = reflections[k];
+          const double g = r.odd ? boundary_value->value(r.surface) :
+                                   boundary_flux->value(r.surface);
+          finite_check.value(g,
+                             r.odd ? boundary_value_entry : boundary_flux_entry,
+                             r.surface,
+                             true,
+                             t);
+          reflection_shift[k] =
+            r.odd ? 2 * g : r.distance * inverse_diffusivity * g;
         }
       for (unsigned int pass = 0; pass < reflection_passes; ++pass)
         {
@@ -286,8 +300,12 @@ namespace PeriDEAL
         {
           source->set_time(t);
           for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-            x.local_element(op.vector_index(i)) =
-              source->value((*nodes)[i].location);
+            {
+              const double value = source->value((*nodes)[i].location);
+              finite_check.value(value, source_entry, (*nodes)[i].location,
+                                 true, t);
+              x.local_element(op.vector_index(i)) = value;
+            }
         }
       if (with_flux && flux_values == "source")
         {
@@ -297,8 +315,12 @@ namespace PeriDEAL
           boundary_flux->set_time(t);
           const double inverse = 1. / (flux_thickness * horizon);
           for (const auto i : flux_nodes)
-            x.local_element(op.vector_index(i)) +=
-              inverse * boundary_flux->value((*nodes)[i].location);
+            {
+              const double q = boundary_flux->value((*nodes)[i].location);
+              finite_check.value(q, boundary_flux_entry, (*nodes)[i].location,
+                                 true, t);
+              x.local_element(op.vector_index(i)) += inverse * q;
+            }
         }
     }
 

@@ -171,6 +171,8 @@ namespace PeriDEAL
                         Patterns::Double(0),
                         "Print a progress line on rank 0 at most every this "
                         "many seconds of wall time (at energy rows).");
+      TimeLoop::declare_parameters(prm);
+      EnergyBalanceMonitor::declare_parameters(prm);
     }
 
 
@@ -201,7 +203,11 @@ namespace PeriDEAL
       checkpoint_minutes     = prm.get_double("Checkpoint interval");
       steps_per_run          = prm.get_integer("Steps per run");
       resume                 = prm.get_bool("Resume from checkpoint");
-      load_history           = std::make_unique<FunctionParser<1>>(1);
+      time_loop.parse_parameters(prm, "explicit dynamics", " s");
+      energy_monitor.parse_parameters(prm, "explicit dynamics");
+      load_history_entry = {"explicit dynamics/Load history",
+                            prm.get("Load history")};
+      load_history       = std::make_unique<FunctionParser<1>>(1);
       try
         {
           load_history->initialize("x,t",
@@ -219,15 +225,30 @@ namespace PeriDEAL
                                       "give a function of t in muparser "
                                       "syntax"));
         }
-      for (const auto &[name, function] :
-           {std::make_pair("Initial displacement", &initial_displacement),
-            std::make_pair("Initial velocity", &initial_velocity)})
-        {
-          prm.enter_subsection(name);
-          *function = std::make_unique<Functions::ParsedFunction<dim>>(dim);
-          (*function)->parse_parameters(prm);
-          prm.leave_subsection();
-        }
+      initial_displacement =
+        parse_function<dim>(prm,
+                            "Initial displacement",
+                            "explicit dynamics",
+                            dim,
+                            &initial_displacement_entry);
+      initial_velocity = parse_function<dim>(prm,
+                                             "Initial velocity",
+                                             "explicit dynamics",
+                                             dim,
+                                             &initial_velocity_entry);
+      // The prescribed displacement or velocity is parsed by the boundary
+      // conditions; its expression, for messages about its values, lives
+      // outside this subsection (which PluginRegistry::create() entered
+      // from the top level).
+      prm.leave_subsection();
+      prm.enter_subsection("Boundary conditions");
+      prm.enter_subsection("Dirichlet displacement");
+      dirichlet_entry = {"Boundary conditions/Dirichlet displacement/Function "
+                         "expression",
+                         prm.get("Function expression")};
+      prm.leave_subsection();
+      prm.leave_subsection();
+      prm.enter_subsection("explicit dynamics");
       pre_crack_text = prm.get("Pre-cracks");
       pre_cracks.parse(pre_crack_text, "explicit dynamics/Pre-cracks");
       no_fail_text = prm.get("No-fail boxes");
@@ -274,8 +295,13 @@ namespace PeriDEAL
     {
       setup(simulator);
       choose_time_step(simulator);
+      energy_monitor.reset();
       if (resume)
-        read_checkpoint(simulator);
+        {
+          read_checkpoint(simulator);
+          for (const auto &row : energy_rows)
+            energy_monitor.observe(row[2], row[3], row[4]);
+        }
       else
         {
           initialize(simulator);
@@ -309,8 +335,7 @@ namespace PeriDEAL
             }
           const bool by_steps =
             output_every_steps > 0 && step_number % output_every_steps == 0;
-          const bool by_time =
-            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
+          const bool by_time = time_loop.output_due(time, dt, next_output_time);
           if (last || by_steps || by_time)
             {
               TimerOutput::Scope out(simulator.get_timer(), "output");
@@ -525,11 +550,13 @@ namespace PeriDEAL
                             " s); give a smaller step, 0 for the bound times "
                             "'Safety factor', or set 'Allow unstable time "
                             "step = true'"));
-      const double wanted =
-        given_time_step > 0 ? given_time_step : safety_factor * dt_bound;
-      n_steps = static_cast<unsigned int>(std::ceil(end_time / wanted - 1e-9));
-      n_steps = std::max(n_steps, 1u);
-      dt      = end_time / n_steps;
+      StabilityBound bound;
+      bound.value       = dt_bound;
+      bound.description = "the stability bound " + to_string(dt_bound) + " s";
+      const auto plan   = time_loop.plan(bound);
+      n_steps           = plan.n_steps;
+      dt                = plan.dt;
+      time_loop.check_output_interval(dt);
       next_output_time = output_interval;
       simulator.get_pcout()
         << "           time step " << to_string(dt) << " s (" << n_steps
@@ -551,23 +578,32 @@ namespace PeriDEAL
         {
           initial_displacement->vector_value(nodes[i].location, value);
           for (unsigned int c = 0; c < dim; ++c)
-            u[nodes[i].dofs[c]] = value[c];
+            {
+              finite_check.value(value[c],
+                                 initial_displacement_entry,
+                                 nodes[i].location);
+              u[nodes[i].dofs[c]] = value[c];
+            }
           initial_velocity->vector_value(nodes[i].location, value);
           for (unsigned int c = 0; c < dim; ++c)
-            v[nodes[i].dofs[c]] = value[c];
+            {
+              finite_check.value(value[c],
+                                 initial_velocity_entry,
+                                 nodes[i].location);
+              v[nodes[i].dofs[c]] = value[c];
+            }
         }
       time = 0;
       simulator.get_boundary_conditions().set_time(0);
-      if (!prescribe_velocity)
-        for (const auto &p : prescribed)
-          u.local_element(p.index) =
-            simulator.get_boundary_conditions().dirichlet_value(
-              nodes[p.node].location)[p.component];
-      else
-        for (const auto &p : prescribed)
-          v.local_element(p.index) =
-            simulator.get_boundary_conditions().dirichlet_value(
-              nodes[p.node].location)[p.component];
+      for (const auto &p : prescribed)
+        {
+          const double g = simulator.get_boundary_conditions().dirichlet_value(
+            nodes[p.node].location)[p.component];
+          finite_check.value(g, dirichlet_entry, nodes[p.node].location, true);
+          (prescribe_velocity ? v : u).local_element(p.index) = g;
+        }
+      // Before the first force pass: it would only spread the bad values.
+      finite_check.throw_pending(simulator.get_communicator());
       u.update_ghost_values();
       // run() records the energies of the initial state next.
       compute_acceleration(simulator, true);
@@ -599,11 +635,12 @@ namespace PeriDEAL
       else
         {
           bond_operator.apply(u, force);
-          elastic_energy_step = numbers::invalid_unsigned_int;
+          elastic_energy_step = no_step;
         }
       broken_bonds += bond_operator.commit_broken_bonds(bond_state);
       load_history->set_time(time);
       load_factor = load_history->value(Point<1>());
+      finite_check.scalar(load_factor, load_history_entry, time, step_number);
       (void)simulator;
       const unsigned int n = u.locally_owned_size();
       const double *pf = force.begin(), *pl = load.begin(), *pm = mass.begin(),
@@ -698,6 +735,11 @@ namespace PeriDEAL
                 g    = conditions.dirichlet_value(nodes[node].location);
               }
             values[q] = g[prescribed[q].component];
+            finite_check.value(values[q],
+                               dirichlet_entry,
+                               nodes[node].location,
+                               true,
+                               when);
           }
         return values;
       };
@@ -782,6 +824,14 @@ namespace PeriDEAL
                                     tip.begin(),
                                     tip.end());
         }
+      energy_monitor.check(kinetic,
+                           elastic,
+                           external_work,
+                           step_number,
+                           time,
+                           dt_bound,
+                           comm,
+                           simulator.get_pcout());
     }
 
 
@@ -816,9 +866,7 @@ namespace PeriDEAL
     {
       const auto    &nodes = simulator.get_nodes();
       const MPI_Comm comm  = simulator.get_communicator();
-      if (output_interval > 0)
-        while (next_output_time <= time + 1e-12 * dt)
-          next_output_time += output_interval;
+      time_loop.advance_output_time(next_output_time, time, dt);
       const auto &output = simulator.get_output();
       if (output.enabled())
         {
@@ -894,56 +942,28 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    ExplicitDynamics<dim>::check_finite(Simulator<dim> &simulator) const
+    ExplicitDynamics<dim>::check_finite(Simulator<dim> &simulator)
     {
-      const auto    &nodes = simulator.get_nodes();
-      const MPI_Comm comm  = simulator.get_communicator();
-      // A fast test first: x * 0 is 0 for a finite x and NaN otherwise, so
-      // the sum is 0 exactly when every owned value is finite (one
-      // vectorised pass instead of a look-up per DoF).
-      // (Four partial sums, so that the loop is not one chain of adds.)
-      double             partial[4] = {0, 0, 0, 0};
-      const double      *pu = u.begin(), *pv = v.begin();
-      const unsigned int n_local = u.locally_owned_size();
-      unsigned int       k       = 0;
-      for (; k + 4 <= n_local; k += 4)
-        for (unsigned int q = 0; q < 4; ++q)
-          partial[q] += pu[k + q] * 0. + pv[k + q] * 0.;
-      for (; k < n_local; ++k)
-        partial[0] += pu[k] * 0. + pv[k] * 0.;
-      const double probe = partial[0] + partial[1] + partial[2] + partial[3];
-      // The first owned node (lowest DoF) with a value that is not finite.
-      types::global_dof_index bad      = numbers::invalid_dof_index;
-      unsigned int            bad_node = 0;
-      for (unsigned int i = 0; probe != 0. && i < nodes.n_owned() &&
-                               bad == numbers::invalid_dof_index;
-           ++i)
-        for (unsigned int c = 0; c < dim; ++c)
-          if (!std::isfinite(u[nodes[i].dofs[c]]) ||
-              !std::isfinite(v[nodes[i].dofs[c]]))
-            {
-              bad      = nodes[i].dofs[0];
-              bad_node = i;
-              break;
-            }
-      const auto first = Utilities::MPI::min(bad, comm);
-      if (first == numbers::invalid_dof_index)
-        return;
-      std::string message;
-      if (bad == first)
-        {
-          std::ostringstream s;
-          s << "The displacement or velocity is not finite at step "
-            << step_number << " (t = " << time << " s) at the node at ("
-            << nodes[bad_node].location
-            << "). The run is unstable: reduce 'explicit dynamics/Time "
-               "step' (stability bound "
-            << dt_bound
-            << " s) or check the loads and material constants. The output "
-               "written before this step is complete.";
-          message = s.str();
-        }
-      throw_on_any_rank(message, comm);
+      const auto &nodes = simulator.get_nodes();
+      finite_check.check_state(
+        nodes,
+        {{u.begin(), u.locally_owned_size()},
+         {v.begin(), v.locally_owned_size()}},
+        [&](const unsigned int i) {
+          for (unsigned int c = 0; c < dim; ++c)
+            if (!std::isfinite(u[nodes[i].dofs[c]]) ||
+                !std::isfinite(v[nodes[i].dofs[c]]))
+              return false;
+          return true;
+        },
+        step_number,
+        time,
+        "The displacement or velocity",
+        "The run is unstable: reduce 'explicit dynamics/Time step' (stability "
+        "bound " +
+          to_string(dt_bound) +
+          " s) or check the loads and material constants.",
+        simulator.get_communicator());
     }
 
 

@@ -165,4 +165,71 @@ for np in 1 2; do
   ls out/*.tmp > /dev/null 2>&1 && fail "non-finite run: temporary files remain"
 done
 
+# The time loop (issue 26). A run that would need an absurd number of steps
+# is refused before it starts, with the count and the entry that set it (the
+# count was a 32-bit integer that wrapped, and the step taken was never held
+# against the bound); an output interval below the step, which looped for
+# ever, is refused; a non-finite input function is named by its entry; a
+# syntax error names the subsection. Explicit and implicit, corrosion, 1D.
+for np in 1 2; do
+  expect_error 's/set End time = 1e-3/set End time = 1e-3\n  set Time step = 1e-300/' \
+    "Invalid value '1e-300' for the parameter 'diffusion/Time step': a step of 1e-300 takes 1e+297 steps" $np
+  expect_error 's/set End time = 1e-3/set End time = 1e-3\n  set Safety factor = 1e-300/' \
+    "Invalid value '1e-300' for the parameter 'diffusion/Safety factor': the step 'Safety factor' (1e-300) times the forward Euler bound" $np
+  expect_error 's/set End time = 1e-3/set End time = 250000/' \
+    "Invalid value '250000' for the parameter 'diffusion/End time'" $np
+  expect_error 's/set End time = 1e-3/set End time = 1e-3\n  set Output interval = 1e-22/' \
+    "Invalid value '1e-22' for the parameter 'diffusion/Output interval': it is shorter than the time step" $np
+  expect_error 's/    set Function expression = x/    set Function expression = x > 0.5 ? 0\/0 : x/' \
+    "Invalid value 'x > 0.5 ? 0/0 : x' for the parameter 'diffusion/Initial concentration/Function expression': its value" $np
+done
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Time stepping = implicit\n  set Time step = 1e-300/' \
+  "Invalid value '1e-300' for the parameter 'diffusion/Time step': a step of 1e-300 takes"
+expect_error 's/set End time = 1e-3/set End time = 1e-3\n  set Output interval = 1e-300/' \
+  "Invalid value '1e-300' for the parameter 'diffusion/Output interval'"
+expect_error 's/    set Function expression = x/    set Function expression = x +* 2/' \
+  "Invalid value 'x +* 2' for the parameter 'diffusion/Initial concentration/Function expression': it cannot be parsed"
+expect_error 's/    set Function expression = 1/    set Function expression = 1; 2/' \
+  "Invalid value '1; 2' for the parameter 'diffusion/Source/Function expression': give one expression"
+expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  subsection Boundary concentration\n    set Function expression = 1\/0\n  end/' \
+  "Invalid value '1/0' for the parameter 'diffusion/Boundary concentration/Function expression': its value, inf, is not finite at t = 0"
+# 1D.
+expect_error 's/set Dimension = 2/set Dimension = 1/; s/set Lower corner = 0, 0/set Lower corner = 0/; s/set Upper corner = 1, 0.5/set Upper corner = 1/; s/set Subdivisions = 20, 10/set Subdivisions = 20/; s/set End time = 1e-3/set End time = 1e-3\n  set Time step = 1e-300/' \
+  "Invalid value '1e-300' for the parameter 'diffusion/Time step': a step of 1e-300 takes" 2
+# Corrosion: the model's limit of the step is named by the entry that sets it.
+cp corrosion.prm base.prm
+for np in 1 2; do
+  expect_error 's/set Current density = 5.1e3/set Current density = 1e300/' \
+    "Invalid value '1e300' for the parameter 'diffusion/corrosion/Current density'" $np
+done
+expect_error 's/set End time = 0.1/set End time = 250000/' \
+  "Invalid value '250000' for the parameter 'diffusion/End time'"
+cp base.orig base.prm
+
+# expect_error_later "sed expression" "substring of the message" nprocs: a
+# value that turns bad during the run stops it with the message; the output
+# written before stays complete.
+expect_error_later() {
+  local edit="$1" expected="$2" nprocs="$3" out rc
+  sed -e "$edit" base.prm > later.prm
+  rm -rf out
+  out=$(timeout 120 mpirun --oversubscribe -np "$nprocs" "$perideal" later.prm 2>&1); rc=$?
+  [ $rc -ne 0 ] && [ $rc -ne 124 ] || fail "exit code $rc on $nprocs processes for: $edit"
+  grep -qF -- "$expected" <<<"$out" || { echo "$out" | tail -5; fail "no '$expected' in the message for: $edit"; }
+  [ -f out/solution.pvd ] || fail "the earlier output is gone for: $edit"
+  for record in $(sed -n 's/.*file="\([^"]*\)".*/\1/p' out/solution.pvd 2>/dev/null); do
+    [ -f "out/$record" ] || fail "$record named but missing for: $edit"
+  done
+  ls out/*.tmp > /dev/null 2>&1 && fail "temporary files remain for: $edit"
+  return 0
+}
+for np in 1 2; do
+  # Values that become non-finite at t > 3e-3: the entry and the time, not
+  # the time step.
+  expect_error_later 's/set End time = 1e-3/set End time = 8e-3\n  set Time step = 1e-3\n  set Output every steps = 2/; s/    set Function expression = 1/    set Function expression = t > 3e-3 ? 0\/0 : 1/' \
+    "Invalid value 't > 3e-3 ? 0/0 : 1' for the parameter 'diffusion/Source/Function expression': its value" $np
+  expect_error_later 's/set End time = 1e-3/set End time = 8e-3\n  set Time step = 1e-3\n  set Output every steps = 2/; s/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  subsection Boundary concentration\n    set Function expression = t > 3.5e-3 ? 1\/0 : 0\n  end/' \
+    "Invalid value 't > 3.5e-3 ? 1/0 : 0' for the parameter 'diffusion/Boundary concentration/Function expression': its value, inf, is not finite at step 4 (evaluated at t = 0.004)" $np
+done
+
 if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi

@@ -115,4 +115,63 @@ for np in 1 2; do
   ls out/*.tmp > /dev/null 2>&1 && fail "unstable run: temporary files remain"
 done
 
+# The time loop (issue 26). A run that would need an absurd number of steps
+# is refused before it starts, with the count and the entry that set it (the
+# count was a 32-bit integer that wrapped, and the step taken was never held
+# against the bound); an output interval below the step, which looped for
+# ever, is refused; a non-finite input function is named by its entry; a
+# syntax error names the subsection.
+for np in 1 2; do
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Time step = 1e-300/' \
+    "Invalid value '1e-300' for the parameter 'explicit dynamics/Time step': a step of 1e-300 s takes 1e+296 steps" $np
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Safety factor = 1e-300/' \
+    "Invalid value '1e-300' for the parameter 'explicit dynamics/Safety factor': the step 'Safety factor' (1e-300) times the stability bound" $np
+  expect_error 's/  set End time = 1e-4/  set End time = 250000/' \
+    "Invalid value '250000' for the parameter 'explicit dynamics/End time'" $np
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Output interval = 1e-22/' \
+    "Invalid value '1e-22' for the parameter 'explicit dynamics/Output interval': it is shorter than the time step" $np
+  expect_error 's/    set Function expression = 0; y > 0.25 ? 1 : -1/    set Function expression = 0; y > 0.25 ? 1 : 0\/0/' \
+    "Invalid value '0; y > 0.25 ? 1 : 0/0' for the parameter 'explicit dynamics/Initial velocity/Function expression': its value" $np
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Load history = 1\/0/' \
+    "Invalid value '1/0' for the parameter 'explicit dynamics/Load history': its value, inf, is not finite" $np
+done
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Output interval = 1e-300/' \
+  "Invalid value '1e-300' for the parameter 'explicit dynamics/Output interval'"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Maximum number of steps = 10/' \
+  "Invalid value '1e-4' for the parameter 'explicit dynamics/End time': the step 'Safety factor' (0.9) times the stability bound"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  subsection Initial displacement\n    set Function expression = 1\/0; 0\n  end/' \
+  "Invalid value '1/0; 0' for the parameter 'explicit dynamics/Initial displacement/Function expression': its value, inf, is not finite at the node at"
+expect_error 's/    set Function expression = 0; y > 0.25 ? 1 : -1/    set Function expression = 0; y >* 2/' \
+  "Invalid value '0; y >* 2' for the parameter 'explicit dynamics/Initial velocity/Function expression': it cannot be parsed"
+expect_error 's/    set Function expression = 0; y > 0.25 ? 1 : -1/    set Function expression = y > 0.25 ? 1 : -1/' \
+  "Invalid value 'y > 0.25 ? 1 : -1' for the parameter 'explicit dynamics/Initial velocity/Function expression': give 2 expressions"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Energy balance tolerance = 0/' \
+  "Invalid value '0' for the parameter 'explicit dynamics/Energy balance tolerance'"
+
+# expect_error_later "sed expression" "substring of the message" nprocs: a
+# value that turns bad during the run stops it with the message; the output
+# written before stays complete.
+expect_error_later() {
+  local edit="$1" expected="$2" nprocs="$3" out rc
+  sed -e "$edit" base.prm > later.prm
+  rm -rf out
+  out=$(timeout 120 mpirun --oversubscribe -np "$nprocs" "$perideal" later.prm 2>&1); rc=$?
+  [ $rc -ne 0 ] && [ $rc -ne 124 ] || fail "exit code $rc on $nprocs processes for: $edit"
+  grep -qF -- "$expected" <<<"$out" || { echo "$out" | tail -5; fail "no '$expected' in the message for: $edit"; }
+  [ -f out/solution.pvd ] || fail "the earlier output is gone for: $edit"
+  for record in $(sed -n 's/.*file="\([^"]*\)".*/\1/p' out/solution.pvd 2>/dev/null); do
+    [ -f "out/$record" ] || fail "$record named but missing for: $edit"
+  done
+  ls out/*.tmp > /dev/null 2>&1 && fail "temporary files remain for: $edit"
+  return 0
+}
+for np in 1 2; do
+  # A prescribed velocity and a load history that become non-finite at
+  # t > 5e-5: the entry and the time, not "the run is unstable".
+  expect_error_later 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary conditions\n  set Dirichlet boundary ids = 0\n  subsection Dirichlet displacement\n    set Function expression = t > 5e-5 ? 1\/0 : 0; 0\n  end\nend/; s/  set End time = 1e-4/  set End time = 1e-4\n  set Prescribed quantity = velocity\n  set Output every steps = 10/' \
+    "Invalid value 't > 5e-5 ? 1/0 : 0; 0' for the parameter 'Boundary conditions/Dirichlet displacement/Function expression': its value, inf, is not finite at step" $np
+  expect_error_later 's/  set End time = 1e-4/  set End time = 1e-4\n  set Load history = t > 5e-5 ? 1\/0 : 1\n  set Output every steps = 10/' \
+    "Invalid value 't > 5e-5 ? 1/0 : 1' for the parameter 'explicit dynamics/Load history': its value, inf, is not finite at step" $np
+done
+
 if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi

@@ -81,6 +81,10 @@ namespace PeriDEAL
       double
       largest_time_step(const DiffusionSetup<dim> &setup) const override;
 
+      /// 'Current density' through the dissolution rate.
+      typename DiffusionModel<dim>::TimeStepLimit
+      time_step_limit() const override;
+
       void
       after_step(const DiffusionSetup<dim> &setup,
                  const double               time,
@@ -137,7 +141,7 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_phase;
       Point<dim>                                      depth_origin;
       Tensor<1, dim>                                  depth_direction;
-      std::string                                     c_sat_text, phase_text;
+      std::string c_sat_text, phase_text, current_density_text;
 
       // State.
       std::vector<unsigned char>     phase;           // per node of the set

@@ -71,6 +71,18 @@ namespace PeriDEAL
       virtual double
       largest_time_step(const DiffusionSetup<dim> &setup) const;
 
+      /// What sets largest_time_step(), for messages: why the model limits
+      /// the step, and the entry ('diffusion/<model>/<Entry>') with its
+      /// value as given that sets the limit (empty: none).
+      struct TimeStepLimit
+      {
+        std::string reason, entry, value;
+      };
+
+      /// What sets largest_time_step() (empty by default).
+      virtual TimeStepLimit
+      time_step_limit() const;
+
       /**
        * After each time step, with the owned values of @p c at @p time;
        * @p record: a history row or an output follows. Collective. A model

@@ -13,7 +13,9 @@
 #include <perideal/operators/diffusion_operator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
+#include <perideal/problems/time_loop.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -49,6 +51,11 @@ namespace PeriDEAL
      *   along listed boundary ids ('Boundary concentration', a function of
      *   x and t); fluxes through listed boundaries as sources in a layer
      *   (flux divided by the layer thickness); a source S(x, t).
+     * - **Checks** (Problems::TimeLoop and its companions): the step
+     *   count in 64 bits and at most 'Maximum number of steps', every
+     *   explicit step within the bound (the model's too), an 'Output
+     *   interval' of at least one step; a non-finite initial
+     *   concentration, source, flux or boundary value named by its entry.
      * - **Output.** PVTU with a PVD time series (concentration, error);
      *   a CSV of time, total amount, extrema and the error against an
      *   analytical solution (relative l2 norm, paper Eq. 66, over the free
@@ -161,9 +168,10 @@ namespace PeriDEAL
       void
       print_progress_line(Simulator<dim> &simulator);
 
-      /// Stop naming the step and node when a value is not finite.
+      /// Stop naming the step and node when a value is not finite, or the
+      /// entry when an input value was not (collective).
       void
-      check_finite(Simulator<dim> &simulator) const;
+      check_finite(Simulator<dim> &simulator);
 
       /// What the diffusion model works on (after setup()).
       Models::DiffusionSetup<dim>
@@ -190,6 +198,13 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> initial, source,
         boundary_value, boundary_flux, analytical;
       bool         with_source = true, with_flux = false, compare = false;
+      /// The function entries, for messages.
+      FunctionEntry initial_entry, source_entry, boundary_value_entry,
+        boundary_flux_entry, analytical_entry;
+      /// Step count and output schedule; non-finite values (the
+      /// evaluations of const functions record into it).
+      TimeLoop            time_loop;
+      mutable FiniteCheck finite_check;
       unsigned int output_every_steps  = 0;
       double       output_interval     = 0;
       unsigned int history_every_steps = 10;
@@ -233,8 +248,8 @@ namespace PeriDEAL
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    laplacian;
       std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
       double       time = 0, dt = 0, dt_bound = 0, radius_estimate = 0;
-      unsigned int step_number = 0, n_steps = 0;
-      unsigned int last_iterations = 0, total_iterations = 0;
+      std::uint64_t step_number = 0, n_steps = 0;
+      unsigned int  last_iterations = 0, total_iterations = 0;
       double       last_progress = 0, next_output_time = 0, loop_start = 0;
       std::vector<std::string>                    model_columns;
       std::vector<std::vector<double>>            history;

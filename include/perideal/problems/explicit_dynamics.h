@@ -14,7 +14,10 @@
 #include <perideal/operators/bond_operator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
+#include <perideal/problems/time_loop.h>
 
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -51,6 +54,12 @@ namespace PeriDEAL
      *   or the velocity (function of x and t); body forces and tractions of
      *   'Boundary conditions' (at t = 0) scaled by 'Load history' g(t);
      *   pre-cracks (Discretization::PreCracks) and no-fail boxes.
+     * - **Checks** (Problems::TimeLoop and its companions): the step
+     *   count in 64 bits and at most 'Maximum number of steps', every step
+     *   taken within the bound, an 'Output interval' of at least one step;
+     *   a non-finite initial field, prescribed value or load history named
+     *   by its entry; the energy balance may not rise ('Energy balance
+     *   tolerance').
      * - **Output.** PVTU every N steps or every interval of time with a PVD
      *   time series (displacement, velocity, damage, broken bonds); a CSV
      *   of time, kinetic and elastic energy, external work and broken bonds;
@@ -157,10 +166,11 @@ namespace PeriDEAL
       void
       read_checkpoint(Simulator<dim> &simulator);
 
-      /// Stop with the step and node named when a value is not finite
+      /// Stop with the step and node named when a value is not finite,
+      /// or with the entry named when an input value was not
       /// (collective).
       void
-      check_finite(Simulator<dim> &simulator) const;
+      check_finite(Simulator<dim> &simulator);
 
       // Input.
       double       end_time            = 1;
@@ -183,6 +193,14 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity;
       std::unique_ptr<FunctionParser<1>>              load_history;
+      /// The function entries, for messages.
+      FunctionEntry initial_displacement_entry, initial_velocity_entry,
+        load_history_entry, dirichlet_entry;
+      /// Step count and output schedule; non-finite values; the energy
+      /// balance.
+      TimeLoop             time_loop;
+      FiniteCheck          finite_check{" s"};
+      EnergyBalanceMonitor energy_monitor;
       Discretization::PreCracks<dim>                  pre_cracks;
       std::vector<BoundingBox<dim>>                   no_fail_boxes;
       std::vector<types::boundary_id>                 no_fail_ids;
@@ -209,16 +227,19 @@ namespace PeriDEAL
       bool                    with_load = false; // any load anywhere
       VectorType              u, v, a, force, previous_force, load, mass;
       double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
+      /// No step (64-bit step numbers: a count of steps never wraps).
+      static constexpr std::uint64_t no_step =
+        std::numeric_limits<std::uint64_t>::max();
       /// The elastic energy from the last compute_acceleration() with
-      /// energy, and the step it belongs to (invalid: none).
-      double       step_elastic_energy = 0;
-      unsigned int elastic_energy_step = numbers::invalid_unsigned_int;
-      unsigned int step_number = 0, n_steps = 0;
+      /// energy, and the step it belongs to (no_step: none).
+      double        step_elastic_energy = 0;
+      std::uint64_t elastic_energy_step = no_step;
+      std::uint64_t step_number = 0, n_steps = 0;
       double       external_work = 0, load_factor = 0;
       std::size_t  broken_bonds  = 0;
       double       last_progress = 0, next_output_time = 0;
       double       loop_start      = 0;
-      unsigned int loop_start_step = 0;
+      std::uint64_t loop_start_step = 0;
       std::vector<std::vector<double>>            energy_rows;
       std::vector<std::pair<double, std::string>> records;
     };
