@@ -173,7 +173,7 @@ namespace PeriDEAL
       if (!(n <= max_steps))
         {
           const std::string count =
-            std::isfinite(n) ? format_number(n) : "infinitely many";
+            std::isfinite(n) ? number(n) : "infinitely many";
           const std::string to_end = " takes " + count + " steps to '" +
                                      section +
                                      "/End time' = " + end_time_text + unit;
@@ -197,9 +197,9 @@ namespace PeriDEAL
             }
           else
             {
-              text = "the step 'Safety factor' (" + safety_factor_text +
-                     ") times " + bound.description + ", " + number(wanted) +
-                     unit + "," + to_end + more;
+              text = "a step of " + number(wanted) + unit + " ('Safety factor' " +
+                     safety_factor_text + " times " + bound.description + ")" +
+                     to_end + more;
               if (!bound.entry.empty())
                 {
                   entry = bound.entry;

@@ -125,7 +125,7 @@ for np in 1 2; do
   expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Time step = 1e-300/' \
     "Invalid value '1e-300' for the parameter 'explicit dynamics/Time step': a step of 1e-300 s takes 1e+296 steps" $np
   expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Safety factor = 1e-300/' \
-    "Invalid value '1e-300' for the parameter 'explicit dynamics/Safety factor': the step 'Safety factor' (1e-300) times the stability bound" $np
+    "Invalid value '1e-300' for the parameter 'explicit dynamics/Safety factor': a step of 6.33722e-305 s ('Safety factor' 1e-300 times the stability bound" $np
   expect_error 's/  set End time = 1e-4/  set End time = 250000/' \
     "Invalid value '250000' for the parameter 'explicit dynamics/End time'" $np
   expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Output interval = 1e-22/' \
@@ -137,8 +137,8 @@ for np in 1 2; do
 done
 expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Output interval = 1e-300/' \
   "Invalid value '1e-300' for the parameter 'explicit dynamics/Output interval'"
-expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Maximum number of steps = 10/' \
-  "Invalid value '1e-4' for the parameter 'explicit dynamics/End time': the step 'Safety factor' (0.9) times the stability bound"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Maximum number of steps = 1/' \
+  "Invalid value '1e-4' for the parameter 'explicit dynamics/End time': a step of 5.7035e-05 s ('Safety factor' 0.9 times the stability bound 6.33722e-05 s) takes 2 steps"
 expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  subsection Initial displacement\n    set Function expression = 1\/0; 0\n  end/' \
   "Invalid value '1/0; 0' for the parameter 'explicit dynamics/Initial displacement/Function expression': its value, inf, is not finite at the node at"
 expect_error 's/    set Function expression = 0; y > 0.25 ? 1 : -1/    set Function expression = 0; y >* 2/' \
@@ -167,11 +167,12 @@ expect_error_later() {
 }
 for np in 1 2; do
   # A prescribed velocity and a load history that become non-finite at
-  # t > 5e-5: the entry and the time, not "the run is unstable".
-  expect_error_later 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary conditions\n  set Dirichlet boundary ids = 0\n  subsection Dirichlet displacement\n    set Function expression = t > 5e-5 ? 1\/0 : 0; 0\n  end\nend/; s/  set End time = 1e-4/  set End time = 1e-4\n  set Prescribed quantity = velocity\n  set Output every steps = 10/' \
-    "Invalid value 't > 5e-5 ? 1/0 : 0; 0' for the parameter 'Boundary conditions/Dirichlet displacement/Function expression': its value, inf, is not finite at step" $np
-  expect_error_later 's/  set End time = 1e-4/  set End time = 1e-4\n  set Load history = t > 5e-5 ? 1\/0 : 1\n  set Output every steps = 10/' \
-    "Invalid value 't > 5e-5 ? 1/0 : 1' for the parameter 'explicit dynamics/Load history': its value, inf, is not finite at step" $np
+  # t > 1.2e-4 (steps of 5e-5): the entry, the step and the time, not "the
+  # run is unstable".
+  expect_error_later 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary conditions\n  set Dirichlet boundary ids = 0\n  subsection Dirichlet displacement\n    set Function expression = t > 1.2e-4 ? 1\/0 : 0; 0\n  end\nend/; s/  set End time = 1e-4/  set End time = 4e-4\n  set Prescribed quantity = velocity\n  set Output every steps = 2/' \
+    "Invalid value 't > 1.2e-4 ? 1/0 : 0; 0' for the parameter 'Boundary conditions/Dirichlet displacement/Function expression': its value, inf, is not finite at step 3 (evaluated at t = 0.000125 s)" $np
+  expect_error_later 's/  set End time = 1e-4/  set End time = 4e-4\n  set Load history = t > 1.2e-4 ? 1\/0 : 1\n  set Output every steps = 2/' \
+    "Invalid value 't > 1.2e-4 ? 1/0 : 1' for the parameter 'explicit dynamics/Load history': its value, inf, is not finite at step 3 (evaluated at t = 0.00015 s)" $np
 done
 
 if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi
