@@ -73,7 +73,9 @@ namespace PeriDEAL
                                  const std::string &role) {
             return "Invalid value '" + expressions.at(function) +
                    "' for the parameter '" + section + "/" + function +
-                   "/Function expression': it is " + format_number(value) +
+                   "/Function expression': it is " +
+                   (std::isnan(value) ? std::string("NaN") :
+                                        format_number(value)) +
                    " at the node at " + at.str() + " at t = " +
                    format_number(t) + ", " + role + " of " + solve_label() +
                    "; give a function that is finite at every node and "

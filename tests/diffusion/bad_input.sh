@@ -190,7 +190,7 @@ expect_stop() {
 implicit='set End time = 1e-3\n  set Time stepping = implicit\n  set Time step = 2.5e-4'
 for np in 1 2; do
   expect_stop "s/set End time = 1e-3/$implicit/; s/    set Function expression = 1/    set Function expression = x > 0.5 ? sqrt(-1) : 1/" \
-    "Invalid value 'x > 0.5 ? sqrt(-1) : 1' for the parameter 'diffusion/Source/Function expression': it is nan at the node at" $np
+    "Invalid value 'x > 0.5 ? sqrt(-1) : 1' for the parameter 'diffusion/Source/Function expression': it is NaN at the node at" $np
   expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Time stepping = steady state/; s/    set Function expression = 1/    set Function expression = x > 0.5 ? sqrt(-1) : 1/' \
     "Invalid value 'x > 0.5 ? sqrt(-1) : 1' for the parameter 'diffusion/Source/Function expression'" $np
 done
