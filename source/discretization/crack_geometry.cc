@@ -78,6 +78,101 @@ namespace PeriDEAL
                (o3 == 0 && on_segment(c, d, a)) ||
                (o4 == 0 && on_segment(c, d, b));
       }
+
+      /**
+       * Refuse a 3D pre-crack polygon that is not a simple polygon in one
+       * plane, each fault in its own words: collinear vertices (no plane),
+       * vertices off the plane, a repeated vertex, or edges that cross
+       * (an edge order that is not the order around the boundary). Newell's
+       * normal alone cannot tell these apart: a symmetric bow tie has zero
+       * area, like a segment.
+       */
+      void
+      check_simple_polygon(const std::vector<Point<3>> &vertices,
+                           const std::size_t            number,
+                           const std::string           &entry,
+                           const std::string           &text)
+      {
+        const unsigned int n    = vertices.size();
+        const std::string  name = "pre-crack polygon " + std::to_string(number);
+        const BoundingBox<3> box(vertices);
+        const double         size =
+          box.side_length(0) + box.side_length(1) + box.side_length(2);
+        // The plane: the largest cross product of two edges from the first
+        // vertex (well conditioned whatever the vertex order).
+        Tensor<1, 3> normal;
+        for (unsigned int k = 1; k < n; ++k)
+          for (unsigned int l = k + 1; l < n; ++l)
+            {
+              const Tensor<1, 3> c = cross_product_3d(vertices[k] - vertices[0],
+                                                      vertices[l] - vertices[0]);
+              if (c.norm() > normal.norm())
+                normal = c;
+            }
+        AssertThrow(normal.norm() > 1e-12 * size * size,
+                    ExcInvalidInput(entry,
+                                    text,
+                                    "the " + name +
+                                      " has no area (collinear vertices)"));
+        normal /= normal.norm();
+        for (const auto &p : vertices)
+          AssertThrow(std::abs((p - vertices[0]) * normal) <= 1e-9 * size,
+                      ExcInvalidInput(entry,
+                                      text,
+                                      "the vertices of a pre-crack "
+                                      "polygon must lie in one plane"));
+        Tensor<1, 3> u = vertices[1] - vertices[0];
+        for (const auto &p : vertices)
+          if ((p - vertices[0]).norm() > u.norm())
+            u = p - vertices[0];
+        u /= u.norm();
+        const Tensor<1, 3>    v = cross_product_3d(normal, u);
+        std::vector<Point<2>> q;
+        for (const auto &p : vertices)
+          q.emplace_back((p - vertices[0]) * u, (p - vertices[0]) * v);
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int l = k + 1; l < n; ++l)
+            AssertThrow(q[k].distance(q[l]) > 1e-12 * size,
+                        ExcInvalidInput(entry,
+                                        text,
+                                        "vertices " + std::to_string(k + 1) +
+                                          " and " + std::to_string(l + 1) +
+                                          " of the " + name +
+                                          " coincide; give each vertex "
+                                          "once"));
+        const auto edge = [&](const unsigned int k) {
+          return std::to_string(k + 1) + "-" + std::to_string((k + 1) % n + 1);
+        };
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int l = k + 1; l < n; ++l)
+            {
+              const Point<2> &a = q[k], &b = q[(k + 1) % n], &c = q[l],
+                             &d = q[(l + 1) % n];
+              bool cross = false;
+              if (l == k + 1 || (k == 0 && l == n - 1))
+                {
+                  // Neighbouring edges share a vertex; they overlap only
+                  // where the boundary folds back on itself.
+                  const Point<2> &shared = l == k + 1 ? b : a;
+                  const Point<2> &p      = l == k + 1 ? a : b;
+                  const Point<2> &r      = l == k + 1 ? d : c;
+                  cross = std::abs(orientation(shared, p, r)) <=
+                            1e-12 * size * size &&
+                          (p - shared) * (r - shared) > 0;
+                }
+              else
+                cross = segments_intersect(a, b, c, d);
+              AssertThrow(!cross,
+                          ExcInvalidInput(entry,
+                                          text,
+                                          "the " + name +
+                                            " intersects itself (its edges " +
+                                            edge(k) + " and " + edge(l) +
+                                            " meet); list the vertices in "
+                                            "order around the boundary of "
+                                            "the polygon"));
+            }
+      }
     } // namespace
 
 
@@ -116,6 +211,10 @@ namespace PeriDEAL
           crack.box = BoundingBox<dim>(crack.vertices);
           if constexpr (dim == 3)
             {
+              check_simple_polygon(crack.vertices,
+                                   cracks.size() + 1,
+                                   entry,
+                                   text);
               // Newell's normal; every vertex must lie in its plane.
               Tensor<1, dim>     normal;
               const unsigned int n = crack.vertices.size();
@@ -249,10 +348,12 @@ namespace PeriDEAL
                       ExcInvalidInput(entry,
                                       text,
                                       std::string("a box is '") +
-                                        (dim == 2 ? "xmin, ymin, xmax, ymax" :
+                                        (dim == 1 ? "xmin, xmax" :
+                                         dim == 2 ? "xmin, ymin, xmax, ymax" :
                                                     "xmin, ymin, zmin, xmax, "
                                                     "ymax, zmax") +
-                                        "'; separate boxes with ';'"));
+                                        "' in this " + std::to_string(dim) +
+                                        "D run; separate boxes with ';'"));
           Point<dim> lower, upper;
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -281,8 +382,11 @@ namespace PeriDEAL
                       ExcInvalidInput(entry,
                                       text,
                                       std::string("a point is '") +
-                                        (dim == 2 ? "x, y" : "x, y, z") +
-                                        "'; separate points with ';'"));
+                                        (dim == 1 ? "x" :
+                                         dim == 2 ? "x, y" :
+                                                    "x, y, z") +
+                                        "' in this " + std::to_string(dim) +
+                                        "D run; separate points with ';'"));
           Point<dim> p;
           for (unsigned int d = 0; d < dim; ++d)
             p[d] = numbers[d];

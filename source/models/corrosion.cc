@@ -131,15 +131,16 @@ namespace PeriDEAL
       prm.declare_entry("Pit depth origin",
                         "",
                         Patterns::Anything(),
-                        "A point 'x, y[, z]' on the initial metal surface; "
-                        "empty: the origin.");
+                        "A point on the initial metal surface, one "
+                        "coordinate per dimension of the run: 'x' (1D), "
+                        "'x, y' (2D), 'x, y, z' (3D); empty: the origin.");
       prm.declare_entry(
         "Pit depth direction",
         "",
         Patterns::Anything(),
-        "The direction 'x, y[, z]' into the metal along "
-        "which the pit depth is measured; empty: -x (1D), -y (2D), "
-        "-z (3D).");
+        "The direction into the metal along which the pit depth is "
+        "measured, one component per dimension of the run: 'x' (1D), "
+        "'x, y' (2D), 'x, y, z' (3D); empty: -x (1D), -y (2D), -z (3D).");
     }
 
 

@@ -95,6 +95,10 @@ namespace PeriDEAL
                       ExcInvalidInput("Shear modulus",
                                       str(shear),
                                       "give a shear modulus > 0"));
+          stiffness_entry =
+            bulk >= shear ?
+              std::make_pair("Bulk modulus", prm.get("Bulk modulus")) :
+              std::make_pair("Shear modulus", prm.get("Shear modulus"));
         }
       else
         {
@@ -111,6 +115,7 @@ namespace PeriDEAL
                                       "-1 < nu < 0.5"));
           bulk  = E / (3 * (1 - 2 * nu));
           shear = E / (2 * (1 + nu));
+          stiffness_entry = {"Young's modulus", prm.get("Young's modulus")};
         }
     }
 
@@ -189,6 +194,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::pair<std::string, std::string>
+    Model<dim>::stiffness_entry() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
     double
     IsotropicModel<dim>::critical_stretch(const double horizon) const
     {
@@ -223,6 +236,14 @@ namespace PeriDEAL
     IsotropicModel<dim>::density() const
     {
       return mass_density;
+    }
+
+
+    template <int dim>
+    std::pair<std::string, std::string>
+    IsotropicModel<dim>::stiffness_entry() const
+    {
+      return constants.stiffness_entry;
     }
 
 

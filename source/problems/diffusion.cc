@@ -228,6 +228,7 @@ namespace PeriDEAL
                              auto              &function,
                              FunctionEntry     &entry) {
         function = parse_function<dim>(prm, name, section, 1, &entry);
+        expressions[name] = entry.expression;
         return entry.expression;
       };
       parse("Initial concentration", initial, initial_entry);
@@ -495,9 +496,23 @@ namespace PeriDEAL
     Diffusion<dim>::choose_time_step(Simulator<dim> &simulator)
     {
       const double bound = op.gershgorin_bound();
-      AssertThrow(std::isfinite(bound) && bound > 0,
-                  ExcMessage("The stability bound of the time step is not "
-                             "finite: the operator has no bonds?"));
+      // The simulator refuses a run without bonds: a bound out of range is
+      // the diffusivity's scale (over the squared spacing) overflowing.
+      AssertThrow(std::isfinite(bound) && bound > 0 &&
+                    std::isfinite(2 / bound),
+                  ExcInvalidInput(section + "/Diffusivity",
+                                  format_number(kernel.diffusivity()),
+                                  "the stable time step 2 / lambda_G is " +
+                                    format_number(2 / bound) +
+                                    ": Gershgorin's bound lambda_G of the "
+                                    "operator, about the diffusivity over "
+                                    "the squared node spacing, is " +
+                                    format_number(bound) +
+                                    ", out of the range of double precision "
+                                    "numbers (about 1e-308 to 1e308); give "
+                                    "the diffusivity of a real medium, about "
+                                    "1e-12 to 1e-3 m^2/s (or of order 1 in "
+                                    "nondimensional units)"));
       dt_bound = 2 / bound;
       const double model_bound =
         model->largest_time_step(model_setup(simulator));
@@ -653,6 +668,7 @@ namespace PeriDEAL
       op.initialize_vector(system.tmp);
       op.initialize_vector(system.result);
       x.zero_out_ghost_values();
+      check_solve_input(simulator, b, lifted, x);
       const double  norm = lifted.l2_norm();
       SolverControl control(max_iterations, std::max(tolerance * norm, 1e-300));
       const MPI_Comm comm = simulator.get_communicator();
@@ -689,6 +705,8 @@ namespace PeriDEAL
         }
       catch (const SolverControl::NoConvergence &e)
         {
+          if (!std::isfinite(e.last_residual))
+            check_solve_result(simulator, false, e.last_residual, x);
           AssertThrow(false,
                       ExcMessage(
                         "The linear solve of step " +
@@ -703,6 +721,12 @@ namespace PeriDEAL
                         "complete."));
         }
       (void)comm;
+      if (norm == 0)
+        return 0; // no iteration: last_step() would be invalid_unsigned_int
+      check_solve_result(simulator,
+                         control.last_check() == SolverControl::success,
+                         control.last_value(),
+                         x);
       return control.last_step();
     }
 
@@ -997,6 +1021,22 @@ namespace PeriDEAL
         "The concentration",
         advice.str(),
         simulator.get_communicator());
+    }
+
+
+    template <int dim>
+    std::vector<IO::OutputName>
+    Diffusion<dim>::output_names(const Simulator<dim> &simulator) const
+    {
+      const auto &output = simulator.get_output();
+      auto        names  = output.output_names(true);
+      if (!history_file.empty())
+        names.push_back({section + "/History file",
+                         history_file,
+                         output.directory() + "/" + history_file,
+                         IO::OutputName::Kind::file,
+                         "the history file"});
+      return names;
     }
 
 

@@ -526,6 +526,60 @@ namespace PeriDEAL
     }
 
 
+    namespace
+    {
+      /**
+       * Stop when the stable step 2 / sqrt(lambda) is not a finite positive
+       * number. The simulator refuses a run without bonds, so Gershgorin's
+       * bound lambda of M^{-1} K has left the range of doubles; it is the
+       * stiffness over the density: name the one that is out of range.
+       * Collective (the same lambda on every process).
+       */
+      template <int dim>
+      void
+      check_stability_bound(const Simulator<dim>               &simulator,
+                            const Operators::BondOperator<dim> &op,
+                            const double                        lambda)
+      {
+        const double bound = 2 / std::sqrt(lambda);
+        if (std::isfinite(bound) && bound > 0)
+          return;
+        const double stiffness = op.gershgorin_eigenvalue_bound(1.);
+        const double rho       = simulator.get_model().density();
+        const std::string why =
+          "the stable time step 2 / sqrt(lambda) is " + format_number(bound) +
+          ": Gershgorin's bound lambda of M^{-1} K, the bond stiffness (" +
+          format_number(stiffness) + " per unit density) over the density, "
+          "is " +
+          format_number(lambda) +
+          ", out of the range of double precision numbers (about 1e-308 to "
+          "1e308); give ";
+        const bool by_stiffness = !std::isfinite(stiffness) || stiffness <= 0 ||
+                                  !std::isfinite(2 / std::sqrt(stiffness));
+        if (by_stiffness)
+          {
+            const auto [entry, value] = simulator.get_stiffness_entry();
+            AssertThrow(false,
+                        ExcInvalidInput(entry,
+                                        value,
+                                        why +
+                                          "the modulus of a real material, "
+                                          "about 1e3 to 1e12 Pa (or of order "
+                                          "1 in nondimensional units)"));
+          }
+        const std::string entry = simulator.get_stiffness_entry().first;
+        AssertThrow(false,
+                    ExcInvalidInput(entry.substr(0, entry.rfind('/') + 1) +
+                                      "Density",
+                                    format_number(rho),
+                                    why +
+                                      "the density of a real material, about "
+                                      "1 to 2e4 kg/m^3 (or of order 1 in "
+                                      "nondimensional units)"));
+      }
+    } // namespace
+
+
     template <int dim>
     void
     ExplicitDynamics<dim>::choose_time_step(Simulator<dim> &simulator)
@@ -535,9 +589,7 @@ namespace PeriDEAL
       const double power  = bond_operator.estimate_largest_eigenvalue(rho, 60);
       dt_bound            = 2 / std::sqrt(lambda);
       dt_estimate         = 2 / std::sqrt(power);
-      AssertThrow(std::isfinite(dt_bound) && dt_bound > 0,
-                  ExcMessage("The stability bound of the time step is not "
-                             "finite: the operator has no bonds?"));
+      check_stability_bound(simulator, bond_operator, lambda);
       if (given_time_step > 0)
         AssertThrow(
           given_time_step <= dt_bound || allow_unstable,
@@ -964,6 +1016,29 @@ namespace PeriDEAL
           to_string(dt_bound) +
           " s) or check the loads and material constants.",
         simulator.get_communicator());
+    }
+
+
+    template <int dim>
+    std::vector<IO::OutputName>
+    ExplicitDynamics<dim>::output_names(const Simulator<dim> &simulator) const
+    {
+      const auto &output = simulator.get_output();
+      auto        names  = output.output_names(true);
+      for (const std::string suffix : {"", ".new", ".old"})
+        names.push_back({"Output/Directory",
+                         output.directory(),
+                         output.directory() + "/checkpoint" + suffix,
+                         IO::OutputName::Kind::directory,
+                         "the checkpoint directory 'checkpoint" + suffix +
+                           "'"});
+      if (!energy_file.empty())
+        names.push_back({"explicit dynamics/Energy file",
+                         energy_file,
+                         output.directory() + "/" + energy_file,
+                         IO::OutputName::Kind::file,
+                         "the energy file"});
+      return names;
     }
 
 

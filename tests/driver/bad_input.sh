@@ -210,4 +210,18 @@ for entry in "set Dimension" "subsection Horizon" "set m-ratio" "subsection line
   grep -qF "$entry" <<<"$out" || fail "--print-parameters lacks '$entry'"
 done
 
+# A modulus whose bond stiffness overflows with the horizon is named as the
+# cause, not the solve it spoils.
+expect_error "s/    set Poisson's ratio = 0.25/    set Poisson's ratio = 0.25\n    set Young's modulus = 1e308/" \
+  "Invalid value '1e308' for the parameter 'Material model/linear peridynamic solid/Young's modulus': with the horizon" 2
+expect_error "s/    set Poisson's ratio = 0.25/    set Poisson's ratio = 0.25\n    set Young's modulus = 1e308/; s/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend/" \
+  "Invalid value '1e308' for the parameter 'Material model/linear peridynamic solid/Young's modulus'"
+# Output names that meet: the summary among the solution records (it was
+# found out only at the end, after the output was written), or a file
+# where the run needs the output directory.
+expect_error 's|set Directory = out|set Directory = out\n  set Summary file = out/solution_0.pvtu|' \
+  "Invalid value 'out/solution_0.pvtu' for the parameter 'Output/Summary file': it puts the summary file at 'out/solution_0.pvtu', where the run also writes the solution records" 2
+expect_error 's|set Directory = out|set Directory = out/sub\n  set Summary file = out|' \
+  "Invalid value 'out' for the parameter 'Output/Summary file': 'out' would be the summary file ('Output/Summary file') and a directory of the solution records"
+
 if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi

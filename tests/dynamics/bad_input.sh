@@ -174,5 +174,35 @@ for np in 1 2; do
   expect_error_later 's/  set End time = 1e-4/  set End time = 4e-4\n  set Load history = t > 1.2e-4 ? 1\/0 : 1\n  set Output every steps = 2/' \
     "Invalid value 't > 1.2e-4 ? 1/0 : 1' for the parameter 'explicit dynamics/Load history': its value, inf, is not finite at step 3 (evaluated at t = 0.00015 s)" $np
 done
+# A modulus or density whose stiffness leaves the range of doubles is named
+# as the cause (it was "the operator has no bonds?").
+for np in 1 2; do
+  expect_error "s/    set Density = 1000/    set Density = 1000\n    set Young's modulus = 1e308/" \
+    "Invalid value '1e308' for the parameter 'Material model/bond-based/Young's modulus': with the horizon" $np
+done
+expect_error 's/    set Density = 1000/    set Density = 1e-300/' \
+  "Invalid value '1e-300' for the parameter 'Material model/bond-based/Density': the stable time step" 2
+
+# Output names that meet: one output would overwrite or delete another.
+for np in 1 2; do
+  expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Energy file = solution.pvd/' \
+    "Invalid value 'solution.pvd' for the parameter 'explicit dynamics/Energy file': it puts the energy file at 'out/solution.pvd', where the run also writes the time series ('Output/Base name' = 'solution')" $np
+done
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Energy file = checkpoint/' \
+  "Invalid value 'checkpoint' for the parameter 'explicit dynamics/Energy file': it puts the energy file at 'out/checkpoint', where the run also writes the checkpoint directory 'checkpoint' ('Output/Directory' = 'out')"
+expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Energy file = solution_0.1.vtu/' \
+  "Invalid value 'solution_0.1.vtu' for the parameter 'explicit dynamics/Energy file': it puts the energy file at 'out/solution_0.1.vtu', where the run also writes the solution records" 2
+expect_error 's|set Directory = out|set Directory = out\n  set Summary file = out/energies.csv|' \
+  "Invalid value 'out/energies.csv' for the parameter 'Output/Summary file': it puts the summary file at 'out/energies.csv', where the run also writes the energy file"
+
+# A self-intersecting 3D pre-crack polygon is called so (a symmetric bow tie
+# was called "collinear", an asymmetric one was accepted).
+to_3d='s/set Dimension = 2/set Dimension = 3/; s/set Lower corner = 0, 0/set Lower corner = 0, 0, 0/; s/set Upper corner = 1, 0.5/set Upper corner = 1, 0.5, 0.5/; s/set Subdivisions = 20, 10/set Subdivisions = 8, 4, 4/; s/set Variable names = x,y,t/set Variable names = x,y,z,t/; s/set Function expression = 0; y > 0.25 ? 1 : -1/set Function expression = 0; y > 0.25 ? 1 : -1; 0/'
+expect_error "$to_3d; s/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0.2, 0.1, 0.25, 0.6, 0.4, 0.25, 0.6, 0.1, 0.25, 0.2, 0.4, 0.25/" \
+  "Invalid value '0.2, 0.1, 0.25, 0.6, 0.4, 0.25, 0.6, 0.1, 0.25, 0.2, 0.4, 0.25' for the parameter 'explicit dynamics/Pre-cracks': the pre-crack polygon 1 intersects itself (its edges 1-2 and 3-4 meet)"
+expect_error "$to_3d; s/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.9, 0.4, 0.1; 0.2, 0.1, 0.25, 0.8, 0.4, 0.25, 0.8, 0.1, 0.25, 0.2, 0.3, 0.25/" \
+  "'explicit dynamics/Pre-cracks': the pre-crack polygon 2 intersects itself (its edges 1-2 and 3-4 meet)" 2
+expect_error "$to_3d; s/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0.1, 0.1, 0.1, 0.5, 0.1, 0.1, 0.9, 0.1, 0.1/" \
+  "'explicit dynamics/Pre-cracks': the pre-crack polygon 1 has no area (collinear vertices)"
 
 if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi

@@ -5,8 +5,8 @@
 #include <perideal/models/influence_function.h>
 
 #include <memory>
-
 #include <string>
+#include <utility>
 
 namespace PeriDEAL
 {
@@ -148,6 +148,14 @@ namespace PeriDEAL
       virtual double
       density() const;
 
+      /**
+       * The entry of the model's subsection that sets its stiffness, and
+       * its value as given (e.g. {"Young's modulus", "1e308"}), for
+       * messages about the scale of the model; empty where there is none.
+       */
+      virtual std::pair<std::string, std::string>
+      stiffness_entry() const;
+
       static std::string
       family_name();
     };
@@ -170,6 +178,11 @@ namespace PeriDEAL
       double shear = 0;
       /// In 2D: plane stress (true) or plane strain (false).
       bool plane_stress = false;
+      /**
+       * The entry that sets the stiffness ("Young's modulus", or the larger
+       * of "Bulk modulus" and "Shear modulus") and its value as given.
+       */
+      std::pair<std::string, std::string> stiffness_entry;
 
       double
       youngs_modulus() const;
@@ -221,6 +234,9 @@ namespace PeriDEAL
 
       double
       density() const override;
+
+      std::pair<std::string, std::string>
+      stiffness_entry() const override;
 
       double
       bulk_modulus() const override;

@@ -16,6 +16,7 @@
 #include <perideal/problems/time_loop.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -73,6 +74,10 @@ namespace PeriDEAL
 
       void
       check_input(const Simulator<dim> &simulator) const override;
+
+      /// The solution records and time series, and the history file.
+      std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const override;
 
       void
       run(Simulator<dim> &simulator) override;
@@ -173,6 +178,39 @@ namespace PeriDEAL
       void
       check_finite(Simulator<dim> &simulator);
 
+      /// "the linear solve of step 3 (t = 0.003)", or "the steady-state
+      /// solve" (diffusion_checks.cc, as the three functions below).
+      std::string
+      solve_label() const;
+
+      /**
+       * Before a linear solve: stop, on every process, when its right-hand
+       * side @p lifted (@p b with the prescribed values lifted) or its
+       * initial guess @p x is not finite, naming the entry that made it so
+       * (the source, the boundary flux or concentration, the initial
+       * concentration) with the node and the time, or else the step. A
+       * Krylov method would otherwise "converge" on it: deal.II's SolverCG
+       * returns without an error when the first residual is NaN, and the
+       * field would stay as it was.
+       */
+      void
+      check_solve_input(Simulator<dim>   &simulator,
+                        const VectorType &b,
+                        const VectorType &lifted,
+                        const VectorType &x) const;
+
+      /**
+       * After a linear solve from finite data: stop, on every process, when
+       * the solver did not reach @p converged (with the last residual
+       * @p residual, NaN: it stopped at its first check) or the solution
+       * @p x is not finite; the system overflowed.
+       */
+      void
+      check_solve_result(Simulator<dim>   &simulator,
+                         const bool        converged,
+                         const double      residual,
+                         const VectorType &x) const;
+
       /// What the diffusion model works on (after setup()).
       Models::DiffusionSetup<dim>
       model_setup(Simulator<dim> &simulator);
@@ -197,6 +235,9 @@ namespace PeriDEAL
       double dirichlet_thickness = 1, flux_thickness = 1;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial, source,
         boundary_value, boundary_flux, analytical;
+      /// The 'Function expression' of each function subsection, for
+      /// messages.
+      std::map<std::string, std::string> expressions;
       bool         with_source = true, with_flux = false, compare = false;
       /// The function entries, for messages.
       FunctionEntry initial_entry, source_entry, boundary_value_entry,

@@ -80,6 +80,15 @@ namespace PeriDEAL
       void
       check_input(const Simulator<dim> &simulator) const override;
 
+      /**
+       * The solution records and time series, the energy file, and the
+       * checkpoint directories (<Output/Directory>/checkpoint, .new, .old:
+       * reserved whether or not this run writes checkpoints, since a
+       * resumed run reads them).
+       */
+      std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const override;
+
       void
       run(Simulator<dim> &simulator) override;
 

@@ -4,8 +4,10 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <perideal/base/plugin_registry.h>
+#include <perideal/io/output_names.h>
 
 #include <string>
+#include <vector>
 
 namespace PeriDEAL
 {
@@ -51,6 +53,16 @@ namespace PeriDEAL
        */
       virtual void
       check_input(const Simulator<dim> &simulator) const;
+
+      /**
+       * Every name under which a run of this problem type writes, besides
+       * the simulator's own ('Output/Summary file', 'Output/Node data
+       * file'), so that the simulator can refuse two outputs that meet
+       * before the run starts (IO::check_output_names()). Default: the
+       * solution records of 'Output'.
+       */
+      virtual std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const;
 
       /**
        * Run the problem on the set-up of @p simulator: the mesh and the

@@ -216,6 +216,14 @@ namespace PeriDEAL
       const std::string &
       get_node_data_file() const;
 
+      /**
+       * The entry of the material model that sets its stiffness, as
+       * 'Material model/<model>/<entry>', and its value as given; for
+       * messages about a stiffness out of the range of doubles.
+       */
+      std::pair<std::string, std::string>
+      get_stiffness_entry() const;
+
       RunSummary &
       get_summary();
       /// @}
@@ -242,6 +250,24 @@ namespace PeriDEAL
 
       void
       write_summary_file() const;
+
+      /**
+       * Refuse a material model whose bond stiffness at this horizon is
+       * not a finite number (a modulus such as 1e308 overflows once divided
+       * by a power of the horizon), naming the modulus; otherwise every
+       * operator, bound and residual turns NaN or Inf and the failure is
+       * reported far from its cause.
+       */
+      void
+      check_material_scale() const;
+
+      /**
+       * Refuse output names that meet (IO::check_output_names()): the
+       * problem type's, the summary and node data files, and the mesh file
+       * read. Collective.
+       */
+      void
+      check_output_names() const;
 
       const MPI_Comm     communicator;
       ConditionalOStream pcout;
