@@ -21,8 +21,6 @@ namespace PeriDEAL
     {
       const char *const component_names = "x|y|z";
 
-      // A vector function in the subsection @p name: checks the number of
-      // components before deal.II's parser does, to name the entry.
       // Whether the function of the current subsection uses its time
       // variable: the last of 'Variable names' when there are dim + 1 (as
       // ParsedFunction decides).
@@ -37,6 +35,9 @@ namespace PeriDEAL
       }
 
 
+      // A vector function in the subsection @p name: checks the number of
+      // components before deal.II's parser does, to name the entry; sets
+      // @p time_dependent to whether it uses t.
       template <int dim>
       std::unique_ptr<Functions::ParsedFunction<dim>>
       parse_vector_function(ParameterHandler  &prm,

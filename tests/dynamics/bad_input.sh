@@ -152,8 +152,8 @@ expect_error "$ed"'\n  set Prescribed quantity = velocity/' \
   "Invalid value 'velocity' for the parameter 'explicit dynamics/Prescribed quantity': this entry has no effect here"
 expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary conditions\n  subsection Traction\n    set Function expression = 1e6; 0\n  end\nend/' \
   "Invalid value '1e6; 0' for the parameter 'Boundary conditions/Traction/Function expression': this entry has no effect here: no 'Traction boundary ids' are given"
-expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Method = direct\nend/' \
-  "Invalid value 'direct' for the parameter 'Linear solver/Method': this entry has no effect here: the problem type 'explicit dynamics' solves no linear system"
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Method = CG\nend/' \
+  "Invalid value 'CG' for the parameter 'Linear solver/Method': this entry has no effect here: the problem type 'explicit dynamics' solves no linear system"
 expect_error "s/    set Density = 1000/    set Density = 1000\n    set Bulk modulus = 1e9/" \
   "Invalid value '1e9' for the parameter 'Material model/bond-based/Bulk modulus': this entry has no effect here: 'Elastic constants' selects Young's modulus and Poisson's ratio"
 
