@@ -5,6 +5,7 @@
 #include <perideal/discretization/crack_geometry.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace PeriDEAL
 {
@@ -209,6 +210,15 @@ namespace PeriDEAL
               crack.vertices.push_back(p);
             }
           crack.box = BoundingBox<dim>(crack.vertices);
+          if constexpr (dim == 2)
+            AssertThrow(crack.vertices[0] != crack.vertices[1],
+                        ExcInvalidInput(entry,
+                                        text,
+                                        "the pre-crack segment " +
+                                          std::to_string(cracks.size() + 1) +
+                                          " has zero length (both ends at "
+                                          "the same point); give two "
+                                          "different end points"));
           if constexpr (dim == 3)
             {
               check_simple_polygon(crack.vertices,
@@ -255,10 +265,19 @@ namespace PeriDEAL
     bool
     PreCracks<dim>::cuts(const Point<dim> &a, const Point<dim> &b) const
     {
+      return first_cut(a, b) >= 0;
+    }
+
+
+    template <int dim>
+    int
+    PreCracks<dim>::first_cut(const Point<dim> &a, const Point<dim> &b) const
+    {
       BoundingBox<dim> bond(std::make_pair(a, a));
       bond.merge_with(BoundingBox<dim>(std::make_pair(b, b)));
-      for (const auto &crack : cracks)
+      for (unsigned int index = 0; index < cracks.size(); ++index)
         {
+          const auto &crack = cracks[index];
           bool overlap = true;
           for (unsigned int d = 0; d < dim; ++d)
             overlap = overlap &&
@@ -272,7 +291,7 @@ namespace PeriDEAL
                                      b,
                                      crack.vertices[0],
                                      crack.vertices[1]))
-                return true;
+                return index;
             }
           else
             {
@@ -300,20 +319,22 @@ namespace PeriDEAL
                     inside = !inside;
                 }
               if (inside)
-                return true;
+                return index;
             }
         }
-      return false;
+      return -1;
     }
 
 
     template <int dim>
     std::size_t
-    PreCracks<dim>::break_bonds(const NodeSet<dim>      &nodes,
-                                const NeighborList<dim> &lists,
-                                BondState<dim>          &state,
-                                const double             reach) const
+    PreCracks<dim>::break_bonds(const NodeSet<dim>       &nodes,
+                                const NeighborList<dim>  &lists,
+                                BondState<dim>           &state,
+                                const double              reach,
+                                std::vector<std::size_t> *per_crack) const
     {
+      std::vector<std::size_t> count(cracks.size(), 0);
       if (!cracks.empty())
         for (unsigned int i = 0; i < nodes.size(); ++i)
           if (lists.has_list(i))
@@ -330,9 +351,22 @@ namespace PeriDEAL
               if (!near)
                 continue;
               for (unsigned int k = 0; k < lists.n_bonds(i); ++k)
-                if (cuts(x, nodes[state.neighbor(i, k)].location))
+                {
+                  const int crack =
+                    first_cut(x, nodes[state.neighbor(i, k)].location);
+                  if (crack < 0)
+                    continue;
                   state.break_bond(i, k);
+                  if (i < nodes.n_owned())
+                    ++count[crack];
+                }
             }
+      if (per_crack != nullptr)
+        {
+          if (!count.empty())
+            Utilities::MPI::sum(count, nodes.get_communicator(), count);
+          *per_crack = count;
+        }
       return state.synchronize();
     }
 
@@ -429,6 +463,37 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    void
+    check_points_in_body(const NodeSet<dim>            &nodes,
+                         const std::vector<Point<dim>> &points,
+                         const std::string             &entry,
+                         const std::string             &text)
+    {
+      if (points.empty())
+        return;
+      std::vector<unsigned int> inside(points.size(), 0);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int k = 0; k < points.size(); ++k)
+          if (nodes[i].cell.point_inside(points[k], 1e-10))
+            inside[k] = 1;
+      Utilities::MPI::max(inside, nodes.get_communicator(), inside);
+      for (unsigned int k = 0; k < points.size(); ++k)
+        {
+          std::ostringstream point;
+          point << points[k];
+          AssertThrow(inside[k] != 0,
+                      ExcInvalidInput(entry,
+                                      text,
+                                      "point " + std::to_string(k + 1) +
+                                        " (" + point.str() +
+                                        ") lies outside the body, where "
+                                        "no node is; give a point on the "
+                                        "body"));
+        }
+    }
+
+
     template class PreCracks<2>;
     template class PreCracks<3>;
     template std::vector<BoundingBox<1>>
@@ -455,6 +520,16 @@ namespace PeriDEAL
                       const std::string &,
                       const std::string &,
                       const std::string &);
+    template void
+    check_points_in_body<2>(const NodeSet<2> &,
+                            const std::vector<Point<2>> &,
+                            const std::string &,
+                            const std::string &);
+    template void
+    check_points_in_body<3>(const NodeSet<3> &,
+                            const std::vector<Point<3>> &,
+                            const std::string &,
+                            const std::string &);
     template std::vector<bool>
     nodes_in_boxes<3>(const NodeSet<3> &,
                       const std::vector<BoundingBox<3>> &,

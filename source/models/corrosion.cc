@@ -228,6 +228,39 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    Corrosion<dim>::unused_entries() const
+    {
+      std::vector<UnusedEntry> unused = {
+        {"Initial concentration/",
+         "with 'Model = corrosion' the initial concentration follows from "
+         "'corrosion/Initial phase' ('Initial electrolyte concentration' in "
+         "the electrolyte, 'Solid concentration' in the metal); remove the "
+         "subsection"}};
+      const std::string own = "corrosion/";
+      if (interface_model == "dissolution rate")
+        unused.push_back({own + "Interface diffusivity",
+                          "'Interface model = dissolution rate' takes the "
+                          "rate from 'Current density' and 'Valence'; set "
+                          "'Interface model = interface diffusivity' to use "
+                          "it, or remove the entry"});
+      else
+        for (const char *entry : {"Current density", "Valence"})
+          unused.push_back({own + entry,
+                            "'Interface model = interface diffusivity' "
+                            "takes the flow from 'Interface diffusivity'; "
+                            "set 'Interface model = dissolution rate' to use "
+                            "it, or remove the entry"});
+      if (!with_damage)
+        unused.push_back({own + "Damage seed",
+                          "'Mechanical damage' is false, so no bond "
+                          "thresholds are drawn; set it to true, or remove "
+                          "the entry"});
+      return unused;
+    }
+
+
+    template <int dim>
     double
     Corrosion<dim>::flat_interface_factor(const unsigned int       d,
                                           const unsigned int       q,

@@ -11,6 +11,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    DiffusionModel<dim>::unused_entries() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
     bool
     DiffusionModel<dim>::supports_implicit() const
     {

@@ -160,6 +160,8 @@ namespace PeriDEAL
     IsotropicModel<dim>::parse_parameters(ParameterHandler &prm)
     {
       constants.parse_parameters(prm);
+      given_as_moduli =
+        prm.get("Elastic constants") == "bulk and shear modulus";
       omega = InfluenceFunctionRegistry::create(prm.get("Influence function"));
       mass_density           = prm.get_double("Density");
       given_critical_stretch = prm.get_double("Critical stretch");
@@ -174,6 +176,29 @@ namespace PeriDEAL
                                   "give either 'Critical stretch' or "
                                   "'Fracture energy', not both (the other "
                                   "one = 0)"));
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    Model<dim>::unused_entries() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    IsotropicModel<dim>::unused_entries() const
+    {
+      const std::string why =
+        "'Elastic constants' selects " +
+        std::string(given_as_moduli ? "the bulk and shear modulus" :
+                                      "Young's modulus and Poisson's ratio") +
+        "; give the material by those, or select the other pair";
+      if (given_as_moduli)
+        return {{"Young's modulus", why}, {"Poisson's ratio", why}};
+      return {{"Bulk modulus", why}, {"Shear modulus", why}};
     }
 
 

@@ -331,6 +331,80 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    Diffusion<dim>::unused_entries(const Simulator<dim> &) const
+    {
+      const std::string        prefix = section + "/";
+      std::vector<UnusedEntry> unused = {
+        {"Boundary conditions/",
+         "the diffusion problem takes its boundary values and fluxes from "
+         "'diffusion/Dirichlet boundary ids', 'Boundary concentration', "
+         "'Flux boundary ids' and 'Boundary flux'; remove the subsection "
+         "'Boundary conditions'"},
+        {"Analytical solution/",
+         "the diffusion problem compares with 'diffusion/Analytical "
+         "concentration' when 'diffusion/Compare with analytical solution' "
+         "is true; remove the subsection 'Analytical solution'"}};
+      const auto add = [&](const std::vector<std::string> &entries,
+                           const std::string              &why) {
+        for (const auto &entry : entries)
+          unused.push_back({prefix + entry, why});
+      };
+      if (stepping != "implicit")
+        add({"Implicit scheme"},
+            "'Time stepping = " + stepping +
+              "' uses no implicit scheme; set 'Time stepping = implicit' to "
+              "use it, or remove the entry");
+      if (stepping == "explicit")
+        add({"Preconditioner", "Solver tolerance", "Maximum iterations"},
+            "'Time stepping = explicit' solves no linear system; remove the "
+            "entry, or choose 'implicit' or 'steady state'");
+      if (stepping == "steady state")
+        add({"Time step",
+             "End time",
+             "Output every steps",
+             "Output interval",
+             "History every steps"},
+            "'Time stepping = steady state' takes no time steps (one solve, "
+            "one output, sources and boundary values at t = 0); remove the "
+            "entry, or choose 'explicit' or 'implicit'");
+      if (stepping != "explicit" || given_time_step > 0)
+        add({"Safety factor"},
+            stepping != "explicit" ?
+              "the time step of 'Time stepping = " + stepping +
+                "' is 'Time step' itself; remove the entry" :
+              std::string("'Time step' is given, so no fraction of the "
+                          "stability bound is taken; set 'Time step = 0' to "
+                          "use it, or remove the entry"));
+      if (stepping != "explicit" || given_time_step == 0)
+        add({"Allow unstable time step"},
+            stepping != "explicit" ?
+              "'Time stepping = " + stepping +
+                "' has no stability bound to exceed; remove the entry" :
+              std::string("with 'Time step = 0' the step is 'Safety "
+                          "factor' (at most 1) times the stability bound, "
+                          "never above it; remove the entry"));
+      if (dirichlet_ids.empty())
+        add({"Dirichlet layer thickness",
+             "Dirichlet layer values",
+             "Boundary concentration/"},
+            "no 'Dirichlet boundary ids' are given, so there is no "
+            "Dirichlet layer; give them, or remove the entry");
+      if (flux_ids.empty())
+        add({"Flux layer thickness", "Flux layer values", "Boundary flux/"},
+            "no 'Flux boundary ids' are given, so no flux enters; give "
+            "them, or remove the entry");
+      if (!compare)
+        add({"Analytical concentration/"},
+            "'diffusion/Compare with analytical solution' is false; set it "
+            "to true to compare, or remove the entry");
+      for (const auto &rule : model->unused_entries())
+        unused.push_back({prefix + rule.pattern, rule.why});
+      return unused;
+    }
+
+
+    template <int dim>
     Models::DiffusionSetup<dim>
     Diffusion<dim>::model_setup(Simulator<dim> &simulator)
     {

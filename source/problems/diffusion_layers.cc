@@ -89,6 +89,33 @@ namespace PeriDEAL
       is_prescribed.assign(c.locally_owned_size(), false);
       for (const auto i : prescribed_nodes)
         is_prescribed[op.vector_index(i)] = true;
+
+      // A body whose every node is prescribed has nothing to solve for:
+      // the run would only replay the boundary values.
+      const MPI_Comm comm = simulator.get_communicator();
+      const auto     free_after =
+        [&](const std::size_t n_prescribed) -> types::global_dof_index {
+        return Utilities::MPI::sum<types::global_dof_index>(set.n_owned() -
+                                                              n_prescribed,
+                                                            comm);
+      };
+      const bool dirichlet_only = free_after(dirichlet_nodes.size()) == 0;
+      AssertThrow(free_after(prescribed_nodes.size()) > 0,
+                  ExcInvalidInput(
+                    section + (dirichlet_only ? "/Dirichlet layer thickness" :
+                                                "/Flux layer thickness"),
+                    dirichlet_only ? dirichlet_thickness_text :
+                                     flux_thickness_text,
+                    std::string("every node lies in a ") +
+                      (dirichlet_only ? "Dirichlet layer" :
+                                        "Dirichlet layer or mirror flux "
+                                        "layer") +
+                      " (" +
+                      format_number((dirichlet_only ? dirichlet_thickness :
+                                                      flux_thickness) *
+                                    horizon) +
+                      " thick), so no value is left to compute; use a "
+                      "thinner layer, a smaller horizon or a larger body"));
     }
 
 

@@ -6,6 +6,7 @@
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -75,10 +76,13 @@ namespace PeriDEAL
       prm.declare_entry("Load history",
                         "1",
                         Patterns::Anything(),
-                        "g(t): the body force and traction of 'Boundary "
-                        "conditions' (evaluated at t = 0) are multiplied by "
-                        "this function of t (muparser syntax), e.g. '1' for "
-                        "a step load, 't < 1e-6 ? t / 1e-6 : 1' for a ramp.");
+                        "g(t): an extra factor on the body force and "
+                        "traction of 'Boundary conditions', a function of t "
+                        "alone (muparser syntax), e.g. '1' (none), 't < "
+                        "1e-6 ? t / 1e-6 : 1' for a ramp. The functions of "
+                        "'Boundary conditions' are themselves evaluated at "
+                        "each step's time, so a load may as well use t "
+                        "there (variables 'x,y,t').");
       prm.enter_subsection("Initial displacement");
       Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
       prm.leave_subsection();
@@ -210,7 +214,10 @@ namespace PeriDEAL
       load_history       = std::make_unique<FunctionParser<1>>(1);
       try
         {
-          load_history->initialize("x,t",
+          // FunctionParser<1> needs a space variable; one no user writes,
+          // so that 'x' (or any other name but t) is an unknown variable
+          // instead of a silent 0.
+          load_history->initialize("perideal_unused_coordinate,t",
                                    prm.get("Load history"),
                                    std::map<std::string, double>(),
                                    true);
@@ -222,8 +229,10 @@ namespace PeriDEAL
           AssertThrow(false,
                       ExcInvalidInput("explicit dynamics/Load history",
                                       prm.get("Load history"),
-                                      "give a function of t in muparser "
-                                      "syntax"));
+                                      "give a function of t alone in "
+                                      "muparser syntax (t is its only "
+                                      "variable; a load that varies in space "
+                                      "belongs in 'Boundary conditions')"));
         }
       initial_displacement =
         parse_function<dim>(prm,
@@ -265,8 +274,9 @@ namespace PeriDEAL
                                   "give a thickness > 0 (in horizons), for "
                                   "instance 1"));
       crack_tip.parse_parameters(prm, "explicit dynamics");
+      probe_text = prm.get("Probe points");
       probe_points =
-        Discretization::parse_points<dim>(prm.get("Probe points"),
+        Discretization::parse_points<dim>(probe_text,
                                           "explicit dynamics/Probe points");
     }
 
@@ -286,6 +296,53 @@ namespace PeriDEAL
                                   "the node data file is written by the "
                                   "quasi-static problem only; leave it "
                                   "empty"));
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    ExplicitDynamics<dim>::unused_entries(const Simulator<dim> &simulator) const
+    {
+      const std::string        section = "explicit dynamics/";
+      const auto              &bc      = simulator.get_boundary_conditions();
+      std::vector<UnusedEntry> unused  = bc.unused_entries();
+      unused.push_back({"Analytical solution/",
+                        "explicit dynamics compares with no analytical "
+                        "solution (it records energies, 'Probe points' and "
+                        "the crack tip); remove the subsection 'Analytical "
+                        "solution'"});
+      if (given_time_step > 0)
+        unused.push_back({section + "Safety factor",
+                          "'Time step' is given, so no fraction of the "
+                          "stability bound is taken; set 'Time step = 0' "
+                          "to use it, or remove the entry"});
+      else
+        unused.push_back({section + "Allow unstable time step",
+                          "with 'Time step = 0' the step is 'Safety factor' "
+                          "(at most 1) times the stability bound, never "
+                          "above it; remove the entry"});
+      if (no_fail_ids.empty())
+        unused.push_back({section + "No-fail layer thickness",
+                          "it is the thickness of the layers along 'No-fail "
+                          "boundary ids', and none are given; give them, or "
+                          "remove the entry"});
+      if (!crack_tip.enabled())
+        for (const char *entry : {"Crack tip region", "Crack tip damage"})
+          unused.push_back({section + entry,
+                            "no 'Crack tip origin' is given, so no crack tip "
+                            "is tracked; give the origin too, or remove the "
+                            "entry"});
+      if (!bc.has_load())
+        unused.push_back({section + "Load history",
+                          "'Boundary conditions' gives no body force and no "
+                          "'Traction boundary ids', so there is no load to "
+                          "scale; give the load, or remove the entry"});
+      if (!bc.has_dirichlet())
+        unused.push_back({section + "Prescribed quantity",
+                          "neither 'Boundary conditions/Dirichlet boundary "
+                          "ids' nor 'Dirichlet boxes' is given, so nothing "
+                          "is prescribed; give them, or remove the entry"});
+      return unused;
     }
 
 
@@ -425,16 +482,27 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         h = std::max(h, std::pow(nodes[i].volume(), 1. / dim));
       h = Utilities::MPI::max(h, comm);
-      const std::size_t n_cut =
+      std::vector<std::size_t> cut_per_crack;
+      const std::size_t        n_cut =
         pre_cracks.break_bonds(nodes,
                                lists,
                                bond_state,
-                               horizon + 2 * std::sqrt(dim) * h);
+                               horizon + 2 * std::sqrt(dim) * h,
+                               &cut_per_crack);
       AssertThrow(pre_cracks.empty() || n_cut > 0,
                   ExcInvalidInput("explicit dynamics/Pre-cracks",
                                   pre_crack_text,
                                   "no bond crosses the pre-cracks: they lie "
                                   "outside the body"));
+      for (std::size_t k = 0; k < cut_per_crack.size(); ++k)
+        AssertThrow(cut_per_crack[k] > 0,
+                    ExcInvalidInput("explicit dynamics/Pre-cracks",
+                                    pre_crack_text,
+                                    "pre-crack " + std::to_string(k + 1) +
+                                      " crosses no bond (that another "
+                                      "pre-crack does not cross already): it "
+                                      "lies outside the body; move it onto "
+                                      "the body, or remove it"));
       bond_operator.update_bond_state();
       broken_bonds = n_cut;
 
@@ -466,18 +534,52 @@ namespace PeriDEAL
       TrilinosWrappers::MPI::Vector nodal_load(
         simulator.get_dof_handler().locally_owned_dofs(),
         comm);
-      simulator.get_boundary_conditions().add_load(simulator.get_dof_handler(),
-                                                   nodes,
-                                                   constraints,
-                                                   nodal_load);
+      // Loads that depend on t: the constant part once, the others at
+      // their sites at each step (update_load()).
+      auto &conditions    = simulator.get_boundary_conditions();
+      time_dependent_load = conditions.load_depends_on_time();
+      load_sites.clear();
+      load_site_indices.clear();
+      if (time_dependent_load)
+        load_sites = conditions.add_constant_load(simulator.get_dof_handler(),
+                                                  nodes,
+                                                  constraints,
+                                                  nodal_load);
+      else
+        conditions.add_load(simulator.get_dof_handler(),
+                            nodes,
+                            constraints,
+                            nodal_load);
       for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
         load[dof] = nodal_load[dof];
+      if (time_dependent_load)
+        constant_load = load;
+      for (const auto &site : load_sites)
+        {
+          std::array<unsigned int, dim> indices;
+          for (unsigned int c = 0; c < dim; ++c)
+            indices[c] = site.dofs[c] == numbers::invalid_dof_index ?
+                           numbers::invalid_unsigned_int :
+                           partitioner->global_to_local(site.dofs[c]);
+          load_site_indices.push_back(indices);
+        }
+      load_time = std::numeric_limits<double>::quiet_NaN();
       // The update loops blend with a 0/1 mask (they vectorise), and skip
       // the work of the loads when there are none anywhere.
       free_dof.resize(u.locally_owned_size());
       for (unsigned int k = 0; k < free_dof.size(); ++k)
         free_dof[k] = is_prescribed[k] ? 0. : 1.;
-      with_load = Utilities::MPI::max(load.linfty_norm(), comm) > 0;
+      with_load = time_dependent_load ||
+                  Utilities::MPI::max(load.linfty_norm(), comm) > 0;
+      prescribed_values.clear();
+
+      // Points that would silently stand for the nearest node: on the
+      // body, or an error.
+      Discretization::check_points_in_body(nodes,
+                                           probe_points,
+                                           "explicit dynamics/Probe points",
+                                           probe_text);
+      crack_tip.check_on_body(nodes, "explicit dynamics");
 
       // Probes: the nearest node over all processes (ties: lowest DoF).
       probe_nodes.assign(probe_points.size(), numbers::invalid_unsigned_int);
@@ -523,6 +625,12 @@ namespace PeriDEAL
         << Utilities::MPI::sum(prescribed.size(), comm) << " prescribed DoFs, "
         << MultithreadInfo::n_threads() << " thread(s) per process"
         << std::defaultfloat << std::endl;
+      if (time_dependent_load)
+        simulator.get_pcout()
+          << "           the body force or traction depends on t: evaluated "
+             "at every step's time at "
+          << Utilities::MPI::sum(load_sites.size(), comm) << " load sites"
+          << std::endl;
     }
 
 
@@ -690,10 +798,10 @@ namespace PeriDEAL
           elastic_energy_step = no_step;
         }
       broken_bonds += bond_operator.commit_broken_bonds(bond_state);
+      update_load(simulator, time);
       load_history->set_time(time);
       load_factor = load_history->value(Point<1>());
       finite_check.scalar(load_factor, load_history_entry, time, step_number);
-      (void)simulator;
       const unsigned int n = u.locally_owned_size();
       const double *pf = force.begin(), *pl = load.begin(), *pm = mass.begin(),
                    *free = free_dof.data();
@@ -708,8 +816,52 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    ExplicitDynamics<dim>::update_load(Simulator<dim> &simulator,
+                                       const double    t)
+    {
+      if (!time_dependent_load || t == load_time)
+        return;
+      auto &conditions = simulator.get_boundary_conditions();
+      conditions.set_time(t);
+      for (const auto &indices : load_site_indices)
+        for (const unsigned int k : indices)
+          if (k != numbers::invalid_unsigned_int)
+            load.local_element(k) = constant_load.local_element(k);
+      std::string non_finite;
+      for (std::size_t s = 0; s < load_sites.size(); ++s)
+        {
+          const Tensor<1, dim> f = conditions.load_at(load_sites[s]);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const unsigned int k = load_site_indices[s][c];
+              if (k != numbers::invalid_unsigned_int)
+                load.local_element(k) += f[c];
+              if (!std::isfinite(f[c]) && non_finite.empty())
+                {
+                  std::ostringstream text;
+                  text << "The load is not finite at t = " << t
+                       << " s: component " << c << " of '"
+                       << conditions.load_entry(load_sites[s])
+                       << "' is " << f[c] << " at (" << load_sites[s].point
+                       << "); give an expression that is finite on the "
+                          "whole body and its loaded faces for every t up "
+                          "to 'End time'. The output written before is "
+                          "complete.";
+                  non_finite = text.str();
+                }
+            }
+        }
+      throw_on_any_rank(non_finite, simulator.get_communicator());
+      load_time = t;
+    }
+
+
+    template <int dim>
+    void
     ExplicitDynamics<dim>::step(Simulator<dim> &simulator)
     {
+      // The load at the current time (after a resume: not yet evaluated).
+      update_load(simulator, time);
       const unsigned int n        = u.locally_owned_size();
       const double       old_load = load_factor;
       double             work     = 0;
@@ -775,6 +927,11 @@ namespace PeriDEAL
       auto       &conditions = simulator.get_boundary_conditions();
       const auto &nodes      = simulator.get_nodes();
       const auto  values_at  = [&](const double when) {
+        // Values that do not depend on t are evaluated once.
+        if (!conditions.dirichlet_depends_on_time() &&
+            prescribed_values.size() == prescribed.size() &&
+            !prescribed.empty())
+          return prescribed_values;
         conditions.set_time(when);
         std::vector<double> values(prescribed.size());
         unsigned int        node = numbers::invalid_unsigned_int;
@@ -793,6 +950,8 @@ namespace PeriDEAL
                                true,
                                when);
           }
+        if (!conditions.dirichlet_depends_on_time())
+          prescribed_values = values;
         return values;
       };
       if (prescribe_velocity)

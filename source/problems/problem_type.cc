@@ -21,6 +21,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    ProblemType<dim>::unused_entries(const Simulator<dim> &) const
+    {
+      return {};
+    }
+
+
+    template <int dim>
     std::string
     ProblemType<dim>::family_name()
     {

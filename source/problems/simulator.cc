@@ -490,6 +490,32 @@ namespace PeriDEAL
       prm.leave_subsection();
 
       problem->check_input(*this);
+      check_unused_entries(prm);
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::check_unused_entries(const ParameterHandler &prm) const
+    {
+      std::vector<UnusedEntry> unused = problem->unused_entries(*this);
+      if (!problem->uses_material_model())
+        unused.push_back({"Material model/",
+                          "the problem type '" + problem_name +
+                            "' uses no elastic material model; remove the "
+                            "subsection 'Material model'"});
+      else if (model != nullptr)
+        for (const auto &rule : model->unused_entries())
+          unused.push_back(
+            {"Material model/" + model_name + "/" + rule.pattern, rule.why});
+      if (!problem->uses_linear_solver())
+        unused.push_back({"Linear solver/",
+                          "the problem type '" + problem_name +
+                            "' solves no linear system with it; remove the "
+                            "subsection 'Linear solver'"});
+      ParameterHandler defaults;
+      declare_parameters(defaults);
+      PeriDEAL::check_unused_entries(changed_entries(prm, defaults), unused);
     }
 
 
@@ -1158,6 +1184,16 @@ namespace PeriDEAL
     Simulator<dim>::get_analytical_solution() const
     {
       return compare_with_analytical ? analytical_solution.get() : nullptr;
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::set_time(const double t)
+    {
+      boundary_conditions.set_time(t);
+      if (analytical_solution != nullptr)
+        analytical_solution->set_time(t);
     }
 
 

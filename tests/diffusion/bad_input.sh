@@ -331,6 +331,45 @@ rm -rf out
 cp base.prm base.orig && cp corrosion_1d.prm base.prm
 expect_error 's/set Pit depth direction = -1/set Pit depth direction = -1, 0, 0/' \
   "Invalid value '-1, 0, 0' for the parameter 'diffusion/corrosion/Pit depth direction': a point is 'x' in this 1D run" 2
+# Entries that would be ignored or do nothing: each an error naming the
+# entry and its value (issue 26, class 9), checked before any output.
+ed='s/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0'
+for np in 1 2; do
+  expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary conditions\n  set Dirichlet boundary ids = 1\nend/' \
+    "Invalid value '1' for the parameter 'Boundary conditions/Dirichlet boundary ids': this entry has no effect here: the diffusion problem takes its boundary values" $np
+  expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Material model\n  set Model = bond-based\nend/' \
+    "Invalid value 'bond-based' for the parameter 'Material model/Model': this entry has no effect here: the problem type 'diffusion' uses no elastic material model" $np
+  # Every node prescribed: nothing left to compute.
+  expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0, 1, 2, 3\n  set Dirichlet layer thickness = 2/' \
+    "Invalid value '2' for the parameter 'diffusion/Dirichlet layer thickness': every node lies in a Dirichlet layer" $np
+done
+expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Analytical solution\n  set Compare with analytical solution = true\nend/' \
+  "Invalid value 'true' for the parameter 'Analytical solution/Compare with analytical solution': this entry has no effect here"
+expect_error "$ed"'\n  set Implicit scheme = Crank-Nicolson/' \
+  "Invalid value 'Crank-Nicolson' for the parameter 'diffusion/Implicit scheme': this entry has no effect here: 'Time stepping = explicit' uses no implicit scheme"
+expect_error "$ed"'\n  set Solver tolerance = 1e-6/' \
+  "Invalid value '1e-6' for the parameter 'diffusion/Solver tolerance': this entry has no effect here: 'Time stepping = explicit' solves no linear system"
+expect_error "$ed"'\n  set Time stepping = steady state\n  set End time = 2/; s/set End time = 1e-3//' \
+  "Invalid value '2' for the parameter 'diffusion/End time': this entry has no effect here: 'Time stepping = steady state' takes no time steps"
+expect_error "$ed"'\n  set Time step = 1e-5\n  set Safety factor = 0.5/' \
+  "Invalid value '0.5' for the parameter 'diffusion/Safety factor': this entry has no effect here: 'Time step' is given"
+expect_error "$ed"'\n  set Allow unstable time step = true/' \
+  "Invalid value 'true' for the parameter 'diffusion/Allow unstable time step': this entry has no effect here"
+expect_error "$ed"'\n  subsection Boundary flux\n    set Function expression = 2\n  end/' \
+  "Invalid value '2' for the parameter 'diffusion/Boundary flux/Function expression': this entry has no effect here: no 'Flux boundary ids' are given"
+expect_error "$ed"'\n  set Flux layer thickness = 2/' \
+  "Invalid value '2' for the parameter 'diffusion/Flux layer thickness': this entry has no effect here"
+expect_error "$ed"'\n  subsection Analytical concentration\n    set Function expression = x\n  end/' \
+  "Invalid value 'x' for the parameter 'diffusion/Analytical concentration/Function expression': this entry has no effect here: 'diffusion/Compare with analytical solution' is false"
+cp base.prm base.orig && cp corrosion.prm base.prm
+for np in 1 2; do
+  expect_error 's/set Dirichlet boundary ids = 3/set Dirichlet boundary ids = 3\n  subsection Initial concentration\n    set Function expression = 100\n  end/' \
+    "Invalid value '100' for the parameter 'diffusion/Initial concentration/Function expression': this entry has no effect here: with 'Model = corrosion' the initial concentration follows from 'corrosion/Initial phase'" $np
+done
+expect_error 's/set Current density = 5.1e3/set Current density = 5.1e3\n    set Interface diffusivity = 1e-9/' \
+  "Invalid value '1e-9' for the parameter 'diffusion/corrosion/Interface diffusivity': this entry has no effect here: 'Interface model = dissolution rate'"
+expect_error 's/set Current density = 5.1e3/set Current density = 5.1e3\n    set Damage seed = 7/' \
+  "Invalid value '7' for the parameter 'diffusion/corrosion/Damage seed': this entry has no effect here: 'Mechanical damage' is false"
 cp base.orig base.prm
 
 if [ "$failures" -eq 0 ]; then echo "OK: all bad inputs rejected with clear messages"; else exit 1; fi

@@ -69,6 +69,11 @@ namespace PeriDEAL
       void
       parse_parameters(ParameterHandler &prm) override;
 
+      /// 'Initial concentration' (the phases set it), and the constants of
+      /// the interface model or the damage that are not selected.
+      std::vector<UnusedEntry>
+      unused_entries() const override;
+
       bool
       supports_implicit() const override
       {

@@ -5,6 +5,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <perideal/base/input_checks.h>
 #include <perideal/base/plugin_registry.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
@@ -53,6 +54,15 @@ namespace PeriDEAL
       /// Read the entries of the model's subsection.
       virtual void
       parse_parameters(ParameterHandler &prm);
+
+      /**
+       * Entries of the 'diffusion' subsection (paths relative to it, e.g.
+       * 'Initial concentration/' or '<name>/Damage seed') that have no
+       * effect with this model as configured; the simulator refuses them
+       * when set (Problems::ProblemType::unused_entries()). Default: none.
+       */
+      virtual std::vector<UnusedEntry>
+      unused_entries() const;
 
       /// Whether implicit time stepping and steady states apply.
       virtual bool

@@ -78,6 +78,15 @@ namespace PeriDEAL
       /// The solution records and time series, and the history file.
       std::vector<IO::OutputName>
       output_names(const Simulator<dim> &simulator) const override;
+      /**
+       * The sections the diffusion problem never reads ('Boundary
+       * conditions', 'Analytical solution': it has its own), entries that
+       * its other entries switch off (the solver with explicit stepping,
+       * the time step of a steady state, layer settings without layers,
+       * ...), and the model's (Models::DiffusionModel::unused_entries()).
+       */
+      std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const override;
 
       void
       run(Simulator<dim> &simulator) override;

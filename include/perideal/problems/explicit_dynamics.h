@@ -16,6 +16,7 @@
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -52,7 +53,8 @@ namespace PeriDEAL
      * - **Set-up.** Initial displacement and velocity (functions); the
      *   Dirichlet layers of 'Boundary conditions' prescribe the displacement
      *   or the velocity (function of x and t); body forces and tractions of
-     *   'Boundary conditions' (at t = 0) scaled by 'Load history' g(t);
+     *   'Boundary conditions', evaluated at each step's time when they use
+     *   t (once otherwise), times the optional factor 'Load history' g(t);
      *   pre-cracks (Discretization::PreCracks) and no-fail boxes.
      * - **Checks** (Problems::TimeLoop and its companions): the step
      *   count in 64 bits and at most 'Maximum number of steps', every step
@@ -88,6 +90,12 @@ namespace PeriDEAL
        */
       std::vector<IO::OutputName>
       output_names(const Simulator<dim> &simulator) const override;
+      /// The entries that have no effect on this run: those of
+      /// 'Boundary conditions' (BoundaryConditions::unused_entries()), the
+      /// 'Analytical solution', and own entries that the others switch off
+      /// (e.g. 'Safety factor' with a given 'Time step').
+      std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const override;
 
       void
       run(Simulator<dim> &simulator) override;
@@ -133,6 +141,15 @@ namespace PeriDEAL
       apply_prescribed(Simulator<dim> &simulator,
                        const double    t,
                        const double    dt);
+
+      /**
+       * Evaluate the loads that depend on time at @p t into `load` (the
+       * constant part plus the forces at the load sites), unless they are
+       * already at @p t; stops with the entry, the time and the point named
+       * where a force is not finite. Collective when there are such loads.
+       */
+      void
+      update_load(Simulator<dim> &simulator, const double t);
 
       /// Forces at the current u, bond failure committed; the
       /// acceleration of the free DoFs. With @p with_energy the elastic
@@ -217,6 +234,7 @@ namespace PeriDEAL
       double                   no_fail_thickness = 1;
       IO::CrackTipTracker<dim> crack_tip;
       std::vector<Point<dim>>  probe_points;
+      std::string              probe_text;
       /// Per probe: the local index of the nearest node if this process
       /// owns it, else invalid.
       std::vector<unsigned int> probe_nodes;
@@ -235,6 +253,19 @@ namespace PeriDEAL
       std::vector<double>     free_dof;          // 0 where prescribed, else 1
       bool                    with_load = false; // any load anywhere
       VectorType              u, v, a, force, previous_force, load, mass;
+      /// Loads that depend on t: whether there are any (on any process),
+      /// the part of `load` that does not, the sites of the others with
+      /// the local indices of their DoFs (invalid: constrained), and the
+      /// time `load` was last evaluated at (NaN: not yet).
+      bool       time_dependent_load = false;
+      VectorType constant_load;
+      std::vector<typename Boundary::BoundaryConditions<dim>::LoadSite>
+                                                 load_sites;
+      std::vector<std::array<unsigned int, dim>> load_site_indices;
+      double                                     load_time = 0;
+      /// The prescribed values when they do not depend on t (evaluated
+      /// once; empty until then).
+      std::vector<double> prescribed_values;
       double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
       /// No step (64-bit step numbers: a count of steps never wraps).
       static constexpr std::uint64_t no_step =

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <perideal/base/input_checks.h>
 #include <perideal/base/plugin_registry.h>
 #include <perideal/io/output_names.h>
 
@@ -63,6 +64,18 @@ namespace PeriDEAL
        */
       virtual std::vector<IO::OutputName>
       output_names(const Simulator<dim> &simulator) const;
+       * The entries of the whole input that have no effect on this run as
+       * configured (called after check_input()), e.g. a time step's safety
+       * factor when the step is given, or a section the problem type never
+       * reads. The simulator refuses a run whose input sets one of them to
+       * a value other than its default, naming the entry, its value and
+       * the reason given here. The material model's own rules and the
+       * sections of 'Material model' and 'Linear solver' (by
+       * uses_material_model() and uses_linear_solver()) are added by the
+       * simulator. Default: none.
+       */
+      virtual std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const;
 
       /**
        * Run the problem on the set-up of @p simulator: the mesh and the

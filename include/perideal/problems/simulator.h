@@ -209,6 +209,14 @@ namespace PeriDEAL
       const Functions::ParsedFunction<dim> *
       get_analytical_solution() const;
 
+      /**
+       * Evaluate the functions of the shared set-up that may depend on
+       * time (those of 'Boundary conditions' and the analytical
+       * displacement) at time @p t from now on.
+       */
+      void
+      set_time(const double t);
+
       const IO::SolutionOutput<dim> &
       get_output() const;
 
@@ -268,6 +276,14 @@ namespace PeriDEAL
        */
       void
       check_output_names() const;
+       * Refuse entries that @p prm sets to a value other than their
+       * default where they have no effect on this run (those that the
+       * problem type, the material model and the boundary conditions list,
+       * and the sections of a model or solver the problem type does not
+       * use): each would otherwise be ignored without a word.
+       */
+      void
+      check_unused_entries(const ParameterHandler &prm) const;
 
       const MPI_Comm     communicator;
       ConditionalOStream pcout;
