@@ -217,7 +217,8 @@ namespace PeriDEAL
           if (bytes_each > 0 && n > left / bytes_each)
             corrupt("gives " + std::to_string(n) + " as its " + what +
                     ", more than the " + std::to_string(left) +
-                    " bytes left in the file can hold");
+                    " bytes left in the file can hold (a corrupt count, or a "
+                    "truncated file)");
           return n;
         }
 
