@@ -169,7 +169,19 @@ namespace PeriDEAL
                         "Continue from <Output/Directory>/checkpoint, "
                         "written by a run of the same input (on any number "
                         "of processes: bitwise the same result on the same "
-                        "number, to round-off on another).");
+                        "number, to round-off on another). The checkpoint "
+                        "records the entries that define its state (model "
+                        "and constants, horizon, mesh, partial volumes, "
+                        "failure, probes and crack tip) and a checksum: a "
+                        "change or a corrupt file is refused.");
+      prm.declare_entry(
+        "Overwrite checkpoint",
+        "false",
+        Patterns::Bool(),
+        "Let a run without 'Resume from checkpoint' replace a checkpoint in "
+        "'Output/Directory' that is further in time than the first one it "
+        "writes (refused otherwise, to keep a long run from being lost by "
+        "a forgotten 'Resume').");
       prm.declare_entry("Progress interval",
                         "5",
                         Patterns::Double(0),
@@ -278,6 +290,7 @@ namespace PeriDEAL
       probe_points =
         Discretization::parse_points<dim>(probe_text,
                                           "explicit dynamics/Probe points");
+      parse_checkpoint_parameters(prm);
     }
 
 
@@ -361,6 +374,7 @@ namespace PeriDEAL
         }
       else
         {
+          check_checkpoint_overwrite(simulator);
           initialize(simulator);
           record_energies(simulator);
           write_output(simulator);

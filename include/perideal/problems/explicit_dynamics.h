@@ -188,9 +188,47 @@ namespace PeriDEAL
       write_checkpoint(Simulator<dim> &simulator);
 
       /// Read what write_checkpoint() wrote (same input, any number of
-      /// processes: nodes are keyed by position). Collective.
+      /// processes: nodes are keyed by position). Collective. Refuses a
+      /// checkpoint written with another input (the entry that differs is
+      /// named, with both values) and a corrupt one (checksum, sizes and
+      /// counts checked against the file and the mesh before anything is
+      /// allocated), on every process alike.
       void
       read_checkpoint(Simulator<dim> &simulator);
+
+      /**
+       * One quantity that defines the state a checkpoint holds: an input
+       * entry ('Material model/bond-based/Young's modulus') with its value
+       * as written, or a property of the discretisation ("number of nodes",
+       * "hash of the node positions and volumes") with @p hint naming the
+       * entries it comes from.
+       */
+      struct CheckpointKey
+      {
+        std::string name, value;
+        bool        is_entry = true;
+        std::string hint;
+      };
+
+      /// Read 'Overwrite checkpoint' and record the entries that define the
+      /// state (CheckpointKey) from the whole parameter tree: the model and
+      /// its constants, the horizon, the partial volumes, the mesh, the
+      /// failure parameters and the columns of the energy file.
+      void
+      parse_checkpoint_parameters(ParameterHandler &prm);
+
+      /// The entries of parse_checkpoint_parameters() and the properties of
+      /// this run's discretisation (mesh, horizon, bonds, critical stretch,
+      /// energy columns, time step). Collective (computed once).
+      const std::vector<CheckpointKey> &
+      checkpoint_keys(Simulator<dim> &simulator);
+
+      /// Before a run without 'Resume from checkpoint' writes anything:
+      /// refuse when its output directory holds a checkpoint further in
+      /// time than the first one this run would write (which would replace
+      /// it), unless 'Overwrite checkpoint' is set. Collective.
+      void
+      check_checkpoint_overwrite(Simulator<dim> &simulator) const;
 
       /// Stop with the step and node named when a value is not finite,
       /// or with the entry named when an input value was not
@@ -213,6 +251,7 @@ namespace PeriDEAL
       unsigned int checkpoint_every_steps = 0;
       double       checkpoint_minutes     = 0;
       bool         resume                 = false;
+      bool         overwrite_checkpoint   = false;
       unsigned int steps_per_run          = 0;
       double       last_checkpoint        = 0;
       std::string  pre_crack_text, no_fail_text;
@@ -282,6 +321,9 @@ namespace PeriDEAL
       std::uint64_t loop_start_step = 0;
       std::vector<std::vector<double>>            energy_rows;
       std::vector<std::pair<double, std::string>> records;
+      /// The input entries that define the state (parse time), then, once
+      /// checkpoint_keys() ran, the properties of the discretisation.
+      std::vector<CheckpointKey> checkpoint_inputs, checkpoint_state_keys;
     };
   } // namespace Problems
 } // namespace PeriDEAL
