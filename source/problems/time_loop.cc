@@ -381,7 +381,13 @@ namespace PeriDEAL
       // DoF + 1.
       const std::uint64_t key =
         pending.set ? 0 : (bad == none ? none : bad + 1);
-      const std::uint64_t first = Utilities::MPI::min(key, comm);
+      // MPI_Allreduce with MPI_UINT64_T, not Utilities::MPI::min(): that
+      // one (deal.II 9.4) returned the largest value on 2 processes for a
+      // key of 0 against 2^64 - 1, and a bad input value went unreported.
+      std::uint64_t first = none;
+      const int     ierr =
+        MPI_Allreduce(&key, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
+      AssertThrowMPI(ierr);
       if (first == none)
         return;
       if (first == 0)
@@ -411,8 +417,8 @@ namespace PeriDEAL
         Patterns::Double(0),
         "Largest rise of the energy balance (kinetic + elastic energy - "
         "external work, the column energy_balance) above its lowest value so "
-        "far, as a fraction of the largest kinetic + elastic energy so far; "
-        "checked at every energy row ('Energy every steps'). Broken bonds "
+        "far, as a fraction of the largest kinetic + elastic energy or "
+        "|external work| so far; checked at every energy row ('Energy every steps'). Broken bonds "
         "only lower the balance, and velocity Verlet keeps it up to an "
         "O(dt^2) oscillation (at most 1.2e-3 in the tests, 2.5e-2 in long "
         "wave runs at 0.9 times the bound; doc/explicit-dynamics.md), so a "
@@ -457,7 +463,10 @@ namespace PeriDEAL
     {
       const double balance = kinetic + elastic - external_work;
       lowest               = n_rows == 0 ? balance : std::min(lowest, balance);
-      scale                = std::max(scale, kinetic + elastic);
+      // The energy put in by the loads belongs to the scale: the run's
+      // energies start from nothing, and under a load they are of the
+      // order of its work.
+      scale = std::max({scale, kinetic + elastic, std::abs(external_work)});
       ++n_rows;
     }
 
@@ -473,7 +482,8 @@ namespace PeriDEAL
                                 const ConditionalOStream &pcout)
     {
       const double balance = kinetic + elastic - external_work;
-      const double energy  = std::max(scale, kinetic + elastic);
+      const double energy =
+        std::max({scale, kinetic + elastic, std::abs(external_work)});
       const double rise    = balance - lowest;
       // The sums are the same on every process; the decision is reduced
       // all the same, so that no process can go on alone.
@@ -490,7 +500,7 @@ namespace PeriDEAL
         << balance << " at step " << step << " (t = " << time << " s), "
         << rise << " above its lowest value " << before << ": "
         << rise / energy
-        << " of the largest kinetic + elastic energy so far (" << energy
+        << " of the largest kinetic + elastic energy or external work so far (" << energy
         << "), more than '" << section << "/Energy balance tolerance' = "
         << tolerance
         << ". Broken bonds only lower the balance, so the run made energy: "

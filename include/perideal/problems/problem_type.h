@@ -64,6 +64,8 @@ namespace PeriDEAL
        */
       virtual std::vector<IO::OutputName>
       output_names(const Simulator<dim> &simulator) const;
+
+      /**
        * The entries of the whole input that have no effect on this run as
        * configured (called after check_input()), e.g. a time step's safety
        * factor when the step is given, or a section the problem type never

@@ -276,6 +276,8 @@ namespace PeriDEAL
        */
       void
       check_output_names() const;
+
+      /**
        * Refuse entries that @p prm sets to a value other than their
        * default where they have no effect on this run (those that the
        * problem type, the material model and the boundary conditions list,

@@ -296,7 +296,7 @@ namespace PeriDEAL
      * that oscillation means energy made by the integrator (an unstable
      * step) or by the model. Each energy row is checked against the lowest
      * balance of the rows before, relative to the largest kinetic + elastic
-     * energy so far: a rise above 'Energy balance tolerance' of it stops the
+     * energy or |external work| so far: a rise above 'Energy balance tolerance' of it stops the
      * run (or, with 'Allow energy growth', prints one warning). The inputs
      * are sums over all processes, and the decision is reduced, so every
      * process decides alike.
