@@ -148,7 +148,7 @@ expect_error 's/  subsection Dirichlet displacement/  subsection Body force\n   
   "Boundary conditions/Body force" 2
 expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0\n  set Dirichlet components = x/' \
   "the Dirichlet layers leave a rigid motion free (translation in y)"
-expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids =/' \
+expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids =/; /set Function expression = 1e-3\*x; 0/d; /set Variable names      = x,y/d' \
   "the Dirichlet layers leave a rigid motion free (translation in x, translation in y, rotation in the x-y plane)" 2
 expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0, 1, 2, 3\n  set Dirichlet layer thickness = 0.1/' \
   "the Dirichlet layer of boundary id 0 (0.03" 2
