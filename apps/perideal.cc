@@ -10,6 +10,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <perideal/base/shared_libraries.h>
 #include <perideal/problems/simulator.h>
 
 #include <cstdlib>
@@ -286,6 +287,9 @@ main(int argc, char **argv)
         throw InputError("Cannot read the parameter file '" + first +
                          "': no such readable file. Give the path of a .prm "
                          "file; examples are in parameters/.\n");
+      // A user's plugins register themselves when their library is loaded:
+      // before anything is declared, so that their names are selectable.
+      PeriDEAL::load_shared_libraries(first, MPI_COMM_WORLD);
       const unsigned int dim = read_dimension(first);
       if (dim == 1)
         run<1>(first);
