@@ -292,9 +292,6 @@ namespace PeriDEAL
       std::vector<double>     free_dof;          // 0 where prescribed, else 1
       bool                    with_load = false; // any load anywhere
       VectorType              u, v, a, force, previous_force, load, mass;
-      /// The load (times the load factor, on free DoFs) and the velocity at
-      /// the start of a step, for the work of the step (sized once).
-      std::vector<double> step_start_load, step_start_velocity;
       /// Loads that depend on t: whether there are any (on any process),
       /// the part of `load` that does not, the sites of the others with
       /// the local indices of their DoFs (invalid: constrained), and the

@@ -294,12 +294,15 @@ namespace PeriDEAL
      * external work: velocity Verlet keeps it constant up to an O(dt^2)
      * oscillation, and broken bonds can only lower it, so a rise beyond
      * that oscillation means energy made by the integrator (an unstable
-     * step) or by the model. Each energy row is checked against the lowest
-     * balance of the rows before, relative to the largest kinetic + elastic
-     * energy or |external work| so far: a rise above 'Energy balance tolerance' of it stops the
-     * run (or, with 'Allow energy growth', prints one warning). The inputs
-     * are sums over all processes, and the decision is reduced, so every
-     * process decides alike.
+     * step) or by the model. The monitor takes away the oscillation's known
+     * part, dt^2/8 sum m |a|^2 (Verlet conserves the balance less that
+     * term exactly for linear forces, and for any load history on a free
+     * body), and checks each energy row against the lowest balance of the
+     * rows before, relative to the largest kinetic + elastic energy or
+     * |external work| so far: a rise above 'Energy balance tolerance' of it
+     * stops the run (or, with 'Allow energy growth', prints one warning).
+     * The inputs are sums over all processes, and the decision is reduced,
+     * so every process decides alike.
      */
     class EnergyBalanceMonitor
     {
@@ -315,21 +318,25 @@ namespace PeriDEAL
       void
       reset();
 
-      /// Take a row without checking it (rows restored from a checkpoint).
+      /// Take a row without checking it (rows restored from a checkpoint,
+      /// which do not keep @p verlet_term: 0, which can only hide a rise).
       void
       observe(const double kinetic,
               const double elastic,
-              const double external_work);
+              const double external_work,
+              const double verlet_term = 0);
 
       /**
-       * Check the row of step @p step at @p time, then take it. Throws on
-       * every process, or with 'Allow energy growth' warns once on
-       * @p pcout. Collective.
+       * Check the row of step @p step at @p time, then take it;
+       * @p verlet_term is dt^2/8 sum m |a|^2 at that step. Throws on every
+       * process, or with 'Allow energy growth' warns once on @p pcout.
+       * Collective.
        */
       void
       check(const double          kinetic,
             const double          elastic,
             const double          external_work,
+            const double          verlet_term,
             const std::uint64_t   step,
             const double          time,
             const double          dt_bound,
