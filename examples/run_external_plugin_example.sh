@@ -11,7 +11,8 @@
 #    prefix (RPATH), not from the build tree;
 #  - the runs exit with 0, print the critical stretch of the plugin's
 #    influence function, sqrt(8 pi G0 / (35 mu delta)) (the built-in
-#    "constant" would give sqrt(pi G0 / (6 mu delta)), 15% less), to 1e-8,
+#    "constant" would give sqrt(pi G0 / (6 mu delta)), 15% less), to the
+#    6 significant digits the run prints (5e-6 relative),
 #    and break bonds beyond the pre-crack;
 #  - 1 and 2 processes give the same energy history (broken bonds exactly).
 # LAUNCHER (optional) is a compiler launcher such as ccache.
@@ -58,7 +59,7 @@ for np in 1 2; do
   rc=$?
   [ $rc -eq 0 ] || { cat "../run.np$np.log"; fail "perideal exited with $rc on $np process(es)"; }
   s0=$(sed -n 's/.*critical stretch \([0-9.eE+-]*\),.*/\1/p' "../run.np$np.log")
-  awk -v s="$s0" -v e="$expected" 'BEGIN { d = (s - e) / e; if (d < 0) d = -d; exit !(s != "" && d < 1e-8) }' \
+  awk -v s="$s0" -v e="$expected" 'BEGIN { d = (s - e) / e; if (d < 0) d = -d; exit !(s != "" && d < 5e-6) }' \
     || { cat "../run.np$np.log"; fail "critical stretch '$s0' on $np process(es), expected $expected (quartic bell)"; }
   echo "$np process(es): critical stretch $s0 (closed form $expected)"
   [ -f output/energies.csv ] || fail "no output/energies.csv"
