@@ -216,9 +216,9 @@ to_3d='s/set Dimension = 2/set Dimension = 3/; s/set Lower corner = 0, 0/set Low
 expect_error "$to_3d; s/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0.2, 0.1, 0.25, 0.6, 0.4, 0.25, 0.6, 0.1, 0.25, 0.2, 0.4, 0.25/" \
   "Invalid value '0.2, 0.1, 0.25, 0.6, 0.4, 0.25, 0.6, 0.1, 0.25, 0.2, 0.4, 0.25' for the parameter 'explicit dynamics/Pre-cracks': the pre-crack polygon 1 intersects itself (its edges 1-2 and 3-4 meet)"
 expect_error "$to_3d; s/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.9, 0.4, 0.1; 0.2, 0.1, 0.25, 0.8, 0.4, 0.25, 0.8, 0.1, 0.25, 0.2, 0.3, 0.25/" \
-  "'explicit dynamics/Pre-cracks': the pre-crack polygon 2 intersects itself (its edges 1-2 and 3-4 meet)" 2
+  "Invalid value '0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.9, 0.4, 0.1; 0.2, 0.1, 0.25, 0.8, 0.4, 0.25, 0.8, 0.1, 0.25, 0.2, 0.3, 0.25' for the parameter 'explicit dynamics/Pre-cracks': the pre-crack polygon 2 intersects itself (its edges 1-2 and 3-4 meet)" 2
 expect_error "$to_3d; s/set Pre-cracks = 0, 0.25, 0.5, 0.25/set Pre-cracks = 0.1, 0.1, 0.1, 0.5, 0.1, 0.1, 0.9, 0.1, 0.1/" \
-  "'explicit dynamics/Pre-cracks': the pre-crack polygon 1 has no area (collinear vertices)"
+  "Invalid value '0.1, 0.1, 0.1, 0.5, 0.1, 0.1, 0.9, 0.1, 0.1' for the parameter 'explicit dynamics/Pre-cracks': the pre-crack polygon 1 has no area (collinear vertices)"
 # Entries that would be ignored or do nothing: each an error naming the
 # entry and its value (issue 26, class 9), checked before any output.
 ed='s/  set End time = 1e-4/  set End time = 1e-4'
