@@ -29,6 +29,7 @@ namespace PeriDEAL
     std::string                         line;
     std::vector<std::string>            path;
     std::map<std::string, unsigned int> first_line;
+    std::map<std::string, std::string>  first_value;
     std::vector<InputEntry>             entries;
     unsigned int                        number = 0;
     while (std::getline(in, line))
@@ -50,17 +51,22 @@ namespace PeriDEAL
             InputEntry entry{path, number};
             entry.path.push_back(
               dealii::Utilities::trim(line.substr(4, equal - 4)));
-            const std::string name = entry.name();
-            const auto        seen = first_line.find(name);
+            const std::string name  = entry.name();
+            const std::string value = dealii::Utilities::trim(
+              line.substr(equal + 1));
+            const auto seen = first_line.find(name);
             AssertThrow(seen == first_line.end(),
                         dealii::ExcMessage(
                           "The entry '" + name + "' is set twice in '" + file +
-                          "' (lines " +
+                          "' (line " +
                           std::to_string(
                             seen == first_line.end() ? 0 : seen->second) +
-                          " and " + std::to_string(number) +
-                          "); only the last value would count. Remove one."));
-            first_line[name] = number;
+                          ": '" + first_value[name] + "', line " +
+                          std::to_string(number) + ": '" + value +
+                          "'); only the last value would count. Remove "
+                          "one."));
+            first_line[name]  = number;
+            first_value[name] = value;
             entries.push_back(entry);
           }
       }

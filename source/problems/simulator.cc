@@ -16,6 +16,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
+#include <perideal/base/shared_libraries.h>
 #include <perideal/models/diffusion_model.h>
 #include <perideal/problems/simulator.h>
 
@@ -131,6 +132,10 @@ namespace PeriDEAL
     void
     Simulator<dim>::declare_parameters(ParameterHandler &prm)
     {
+      // The driver reads it and loads the libraries in a first pass
+      // (load_shared_libraries()); declared here so that the full parse
+      // accepts it.
+      declare_shared_library_parameters(prm);
       prm.declare_entry("Dimension",
                         "3",
                         Patterns::Integer(1, 3),

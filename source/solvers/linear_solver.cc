@@ -117,7 +117,9 @@ namespace PeriDEAL
         throw_on_any_rank(
           fits ?
             std::string() :
-            "The direct solver (MUMPS) would need an estimated " +
+            "Invalid value 'direct' for the parameter 'Linear "
+            "solver/Method': the direct solver (MUMPS) would need an "
+            "estimated " +
               format_number(total_needed) + " MB for its factors (" + size +
               "), " + format_number(needed) + " MB on a process that has " +
               format_number(available) + " MB available; " + fix + ".",

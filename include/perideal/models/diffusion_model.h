@@ -131,6 +131,7 @@ namespace PeriDEAL
     using DiffusionModelRegistry = PluginRegistry<DiffusionModel<dim>>;
   } // namespace Models
 
+  extern template class PluginRegistry<Models::DiffusionModel<1>>;
   extern template class PluginRegistry<Models::DiffusionModel<2>>;
   extern template class PluginRegistry<Models::DiffusionModel<3>>;
 } // namespace PeriDEAL

@@ -285,6 +285,7 @@ namespace PeriDEAL
     };
   } // namespace Models
 
+  extern template class PluginRegistry<Models::Model<1>>;
   extern template class PluginRegistry<Models::Model<2>>;
   extern template class PluginRegistry<Models::Model<3>>;
 } // namespace PeriDEAL

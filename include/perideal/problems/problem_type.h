@@ -123,6 +123,7 @@ namespace PeriDEAL
     using ProblemTypeRegistry = PluginRegistry<ProblemType<dim>>;
   } // namespace Problems
 
+  extern template class PluginRegistry<Problems::ProblemType<1>>;
   extern template class PluginRegistry<Problems::ProblemType<2>>;
   extern template class PluginRegistry<Problems::ProblemType<3>>;
 } // namespace PeriDEAL
