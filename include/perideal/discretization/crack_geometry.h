@@ -8,6 +8,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,32 @@ namespace PeriDEAL
 
     /**
      * Pre-cracks: line segments in 2D, planar polygons in 3D. A bond whose
-     * segment \f$[x_i, x_j]\f$ meets a pre-crack (endpoints included) starts
-     * broken.
+     * segment \f$[x_i, x_j]\f$ meets a pre-crack starts broken.
+     *
+     * Both are closed sets, in 2D and in 3D alike: a bond that only touches a
+     * pre-crack counts. In 2D: a bond through an end of the segment, with an
+     * end node on it, or along it (collinear and overlapping). In 3D: a bond
+     * through an edge or a vertex of the polygon, with an end node on it, or
+     * lying in its plane and meeting it. The 3D rule is the 2D rule with one
+     * more dimension, so that a polygon that extrudes a 2D segment (a
+     * rectangle through the thickness) cuts exactly the bonds whose 2D
+     * projection the segment cuts (bonds within its extent). Consequence: a
+     * node exactly on a pre-crack loses every bond; put pre-cracks between
+     * layers of nodes.
+     *
+     * The decisions are exact for the given doubles: the signs of
+     * orientation determinants from a floating-point filter with proven
+     * error bounds, and exact arithmetic where it cannot decide (Shewchuk's
+     * robust predicates). There is no tolerance: a bond that touches a
+     * crack only in decimal is decided by the binary values of the node and
+     * crack coordinates (0.0195 and 0.02 are not binary numbers; nor are the
+     * cell centres that carry the nodes). A crack tip on a cell face, say,
+     * that diagonal bonds pass through in decimal then cuts some of them and
+     * not others, as rounding falls; where that matters, move the tip or edge
+     * off such lines by a small fraction of the node spacing. A 3D polygon is
+     * cut into triangles (ear clipping) when it is parsed; it is their
+     * union, which is the polygon itself when its vertices lie exactly in
+     * one plane (the input check allows 1e-9 of its size off the plane).
      *
      * Written in the input as a list separated by ';' of comma-separated
      * coordinates: in 2D "x1, y1, x2, y2" per segment; in 3D "x1, y1, z1,
@@ -74,8 +99,10 @@ namespace PeriDEAL
       {
         std::vector<Point<dim>> vertices;
         BoundingBox<dim>        box;
-        // 3D: unit normal and the two in-plane axes.
-        Tensor<1, dim> normal, axis_u, axis_v;
+        // 3D: the polygon as triangles (indices into vertices), each with
+        // nonzero area when coordinate drop is left out.
+        std::vector<std::array<unsigned int, 3>> triangles;
+        unsigned int                             drop = 0;
       };
       std::vector<Crack> cracks;
     };
