@@ -16,6 +16,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
+#include <perideal/base/memory_guard.h>
 #include <perideal/base/shared_libraries.h>
 #include <perideal/models/diffusion_model.h>
 #include <perideal/problems/simulator.h>
@@ -571,32 +572,13 @@ namespace PeriDEAL
 
       // Memory available to this job: MemAvailable of each host, shared
       // among the processes on it.
-      double available = 0;
-      {
-        std::ifstream meminfo("/proc/meminfo");
-        std::string   key;
-        double        kb = 0;
-        std::string   unit;
-        while (meminfo >> key >> kb >> unit)
-          if (key == "MemAvailable:")
-            {
-              available = kb * 1024;
-              break;
-            }
-      }
-      MPI_Comm host;
-      MPI_Comm_split_type(communicator,
-                          MPI_COMM_TYPE_SHARED,
-                          0,
-                          MPI_INFO_NULL,
-                          &host);
-      const unsigned int on_host = Utilities::MPI::n_mpi_processes(host);
-      MPI_Comm_free(&host);
-      available = Utilities::MPI::sum(available / on_host, communicator);
+      const double available =
+        Utilities::MPI::sum(available_memory_per_process(communicator),
+                            communicator);
       if (available <= 0) // no /proc/meminfo: no guard
         return;
       AssertThrow(
-        needed <= 0.9 * available,
+        fits_in_memory(needed, available),
         ExcInvalidInput(
           "Geometry/Subdivisions",
           prm_subdivisions,
@@ -891,8 +873,7 @@ namespace PeriDEAL
       const auto entry = model->stiffness_entry();
       if (entry.first.empty())
         return {"Material model/Model", model_name};
-      return {"Material model/" + model_name + "/" + entry.first,
-              entry.second};
+      return {"Material model/" + model_name + "/" + entry.first, entry.second};
     }
 
 
@@ -906,11 +887,11 @@ namespace PeriDEAL
       // The weighted volume m of a full ball, S_{d-1} int_0^delta omega r^{d+1}
       // dr (midpoint rule), the coefficients of the shortest and the longest
       // bond, and a row sum of the stiffness: the same on every process.
-      const double sphere = dim == 1 ? 2. :
-                            dim == 2 ? 2 * numbers::PI :
-                                       4 * numbers::PI;
-      const unsigned int n_r = 256;
-      double             m   = 0;
+      const double       sphere = dim == 1 ? 2. :
+                                  dim == 2 ? 2 * numbers::PI :
+                                             4 * numbers::PI;
+      const unsigned int n_r    = 256;
+      double             m      = 0;
       for (unsigned int k = 0; k < n_r; ++k)
         {
           const double r = (k + 0.5) / n_r * horizon;
@@ -919,8 +900,8 @@ namespace PeriDEAL
         }
       const double volume = sphere / dim * std::pow(horizon, dim);
       bool         finite = std::isfinite(model->bulk_modulus()) &&
-                    std::isfinite(model->shear_modulus()) &&
-                    std::isfinite(m) && m > 0;
+                    std::isfinite(model->shear_modulus()) && std::isfinite(m) &&
+                    m > 0;
       for (const double r : {h, horizon})
         {
           const double a = model->dilatation_coefficient(m, r, horizon);
@@ -951,8 +932,11 @@ namespace PeriDEAL
       using Kind = IO::OutputName::Kind;
       std::vector<IO::OutputName> names;
       if (mesh_kind == "file")
-        names.push_back(
-          {"Geometry/Mesh file", mesh_file, mesh_file, Kind::input, "the mesh"});
+        names.push_back({"Geometry/Mesh file",
+                         mesh_file,
+                         mesh_file,
+                         Kind::input,
+                         "the mesh"});
       for (auto &name : problem->output_names(*this))
         names.push_back(std::move(name));
       if (!summary_file.empty())
