@@ -11,8 +11,6 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
-#include <deal.II/base/multithread_info.h>
-
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
@@ -32,37 +30,6 @@ namespace PeriDEAL
 {
   namespace Problems
   {
-    namespace
-    {
-      /// The columns of the summary CSV.
-      const std::string summary_header =
-        "dim,model,algorithm,n_ranks,n_nodes,n_constrained_nodes,"
-        "h,horizon,m_ratio,n_bonds,nnz,solver,iterations,"
-        "relative_residual,equilibrium_residual,l2_error,"
-        "max_error,time_mesh,time_nodes,time_neighbors,"
-        "time_operator,time_assembly,time_solve,time_output,"
-        "time_total,peak_memory_mb,treatment,taylor_order,"
-        "n_unknowns,n_surface_nodes,n_fictitious_nodes,"
-        "max_normalized_error,operator,preconditioner,"
-        "time_preconditioner,n_threads,problem_type";
-
-      const std::string summary_columns_differ =
-        "the file exists with other columns (an older version or another "
-        "program wrote it), and a row appended to it would be misread; name "
-        "a new file, or move the old one away.";
-
-      /// Whether @p file exists, is not empty and has other columns.
-      bool
-      summary_columns_mismatch(const std::string &file)
-      {
-        std::ifstream in(file);
-        std::string   first_line;
-        return in && std::getline(in, first_line) &&
-               first_line != summary_header;
-      }
-    } // namespace
-
-
     namespace
     {
       template <int dim>
@@ -494,6 +461,13 @@ namespace PeriDEAL
       summary_file   = prm.get("Summary file");
       node_data_file = prm.get("Node data file");
       prm.leave_subsection();
+      summary.dim             = dim;
+      summary.problem_type    = problem_name;
+      summary.model           = model_name;
+      summary.partial_volumes = algorithm_name;
+      summary.operator_type =
+        linear_solver.is_matrix_free() ? "matrix-free" : "assembled";
+      summary.preconditioner = linear_solver.preconditioner_name();
 
       problem->check_input(*this);
       check_unused_entries(prm);
@@ -793,7 +767,7 @@ namespace PeriDEAL
 
 
     template <int dim>
-    RunSummary
+    IO::RunSummary
     Simulator<dim>::run()
     {
       wall_clock.restart();
@@ -826,10 +800,14 @@ namespace PeriDEAL
                   error = "Invalid value '" + file + "' for the parameter '" +
                           entry + "': " + why +
                           "; give a writable file in an existing directory.";
-                else if (entry == "Output/Summary file" &&
-                         summary_columns_mismatch(file))
-                  error = "Invalid value '" + file + "' for the parameter '" +
-                          entry + "': " + summary_columns_differ;
+                else if (entry == "Output/Summary file")
+                  {
+                    const std::string columns =
+                      IO::check_run_summary_columns(file);
+                    if (!columns.empty())
+                      error = "Invalid value '" + file +
+                              "' for the parameter '" + entry + "': " + columns;
+                  }
               }
         throw_on_any_rank(error, communicator);
       }
@@ -860,7 +838,8 @@ namespace PeriDEAL
             << std::setprecision(4) << summary.peak_memory_mb << " MB"
             << std::endl;
 
-      write_summary_file();
+      if (!summary_file.empty())
+        IO::append_run_summary(summary_file, summary, communicator);
       return summary;
     }
 
@@ -953,87 +932,6 @@ namespace PeriDEAL
                          "the node data file"});
       check_on_all_ranks([&]() { IO::check_output_names(names); },
                          communicator);
-    }
-
-
-    template <int dim>
-    void
-    Simulator<dim>::write_summary_file() const
-    {
-      if (summary_file.empty())
-        return;
-      // One row per run, appended: the file is rewritten under a temporary
-      // name and renamed, so that a run killed while writing never
-      // truncates the rows of earlier runs. Process 0 writes; its verdict
-      // is shared.
-      const std::string header = summary_header;
-      std::string       error;
-      if (Utilities::MPI::this_mpi_process(communicator) == 0)
-        {
-          std::string earlier;
-          if (std::filesystem::exists(summary_file))
-            {
-              std::ifstream     in(summary_file);
-              std::stringstream content;
-              content << in.rdbuf();
-              earlier = content.str();
-              if (!earlier.empty() &&
-                  earlier.substr(0, earlier.find('\n')) != header)
-                error = "Invalid value '" + summary_file +
-                        "' for the parameter 'Output/Summary file': " +
-                        summary_columns_differ;
-              if (!earlier.empty() && earlier.back() != '\n')
-                earlier += '\n';
-            }
-          const std::filesystem::path parent =
-            std::filesystem::path(summary_file).parent_path();
-          std::error_code ignored;
-          if (!parent.empty())
-            std::filesystem::create_directories(parent, ignored);
-          std::ostringstream csv;
-          const auto         t = [&](const std::string &phase) {
-            const auto it = summary.seconds.find(phase);
-            return it == summary.seconds.end() ? 0. : it->second;
-          };
-          csv << std::setprecision(10) << dim << ",\"" << model_name << "\",\""
-              << algorithm_name << "\"," << summary.n_ranks << ','
-              << summary.n_nodes << ',' << summary.n_constrained_nodes << ','
-              << h << ',' << horizon << ',' << horizon / h << ','
-              << summary.n_bonds << ',' << summary.n_nonzeros << ",\""
-              << summary.solver.method << "\"," << summary.solver.iterations
-              << ',' << summary.solver.relative_residual << ','
-              << summary.equilibrium_residual << ','
-              << (summary.has_errors ? to_string(summary.errors.l2) : "") << ','
-              << (summary.has_errors ? to_string(summary.errors.max) : "")
-              << ',' << t("mesh") << ',' << t("nodes and ghost exchange") << ','
-              << t("neighbour search and weights") << ',' << t("operator setup")
-              << ',' << t("assembly") << ',' << t("solve") << ',' << t("output")
-              << ',' << t("total") << ',' << summary.peak_memory_mb << ",\""
-              << summary.treatment << "\"," << summary.taylor_order << ','
-              << summary.n_unknowns << ',' << summary.n_surface_nodes << ','
-              << summary.n_fictitious_nodes << ','
-              << (summary.has_errors ?
-                    to_string(summary.errors.max_normalized) :
-                    "")
-              << ",\""
-              << (linear_solver.is_matrix_free() ? "matrix-free" : "assembled")
-              << "\",\"" << linear_solver.preconditioner_name() << "\","
-              << t("preconditioner setup") << ','
-              << MultithreadInfo::n_threads() << ",\"" << problem_name
-              << "\"\n";
-          if (error.empty())
-            {
-              const std::string written =
-                write_then_rename(summary_file, [&](std::ostream &out) {
-                  out << (earlier.empty() ? header + "\n" : earlier)
-                      << csv.str();
-                });
-              if (!written.empty())
-                error = "Invalid value '" + summary_file +
-                        "' for the parameter 'Output/Summary file': " + written;
-            }
-        }
-      throw_on_any_rank(error, communicator);
     }
 
 
@@ -1203,7 +1101,7 @@ namespace PeriDEAL
 
 
     template <int dim>
-    RunSummary &
+    IO::RunSummary &
     Simulator<dim>::get_summary()
     {
       return summary;
