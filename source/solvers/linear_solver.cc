@@ -6,14 +6,13 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/base/memory_guard.h>
 #include <perideal/solvers/linear_solver.h>
 
 #include <Amesos_Mumps.h>
 #include <Epetra_LinearProblem.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -23,41 +22,6 @@ namespace PeriDEAL
   {
     namespace
     {
-      /// MemAvailable of this host divided among the processes on it, in MB
-      /// (0 where /proc/meminfo is missing), or the environment variable
-      /// PERIDEAL_MEMORY_LIMIT_MB (per process) where it is set and smaller:
-      /// a cap for shared machines.
-      double
-      available_mb_per_process(const MPI_Comm comm)
-      {
-        double        available = 0, kb = 0;
-        std::string   key, unit;
-        std::ifstream meminfo("/proc/meminfo");
-        while (meminfo >> key >> kb >> unit)
-          if (key == "MemAvailable:")
-            {
-              available = kb / 1024;
-              break;
-            }
-        MPI_Comm host;
-        MPI_Comm_split_type(comm,
-                            MPI_COMM_TYPE_SHARED,
-                            0,
-                            MPI_INFO_NULL,
-                            &host);
-        const unsigned int on_host =
-          dealii::Utilities::MPI::n_mpi_processes(host);
-        MPI_Comm_free(&host);
-        available /= on_host;
-        if (const char *limit = std::getenv("PERIDEAL_MEMORY_LIMIT_MB"))
-          {
-            const double cap = std::atof(limit);
-            if (cap > 0 && (available <= 0 || cap < available))
-              available = cap;
-          }
-        return available;
-      }
-
       /**
        * Solve with MUMPS through Amesos, in its three phases, so that the
        * analysis's memory estimate (INFO(15), MB per process) is checked
@@ -110,9 +74,9 @@ namespace PeriDEAL
 
         throw_on_any_rank(error_of(mumps.SymbolicFactorization()), comm);
         // INFO(15): MB this process needs for the numerical phases.
-        const double needed       = mumps.GetINFO()[14];
-        const double available    = available_mb_per_process(comm);
-        const bool   fits         = available <= 0 || needed <= 0.9 * available;
+        const double needed    = mumps.GetINFO()[14];
+        const double available = capped_available_memory_mb_per_process(comm);
+        const bool   fits      = fits_in_memory(needed, available);
         const double total_needed = dealii::Utilities::MPI::sum(needed, comm);
         throw_on_any_rank(
           fits ?

@@ -16,6 +16,7 @@
 #include <perideal/boundary/boundary_treatment.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
+#include <perideal/io/run_summary.h>
 #include <perideal/io/solution_output.h>
 #include <perideal/models/model.h>
 #include <perideal/problems/problem_type.h>
@@ -30,53 +31,6 @@ namespace PeriDEAL
 {
   namespace Problems
   {
-    /**
-     * Errors of a computed displacement against an analytical one, over the
-     * owned nodes of all processes:
-     * \f[
-     *   e_{L^2} = \Big(\frac{\sum_i V_i |u_i - u(x_i)|^2}
-     *                      {\sum_i V_i |u(x_i)|^2}\Big)^{1/2},\qquad
-     *   e_{\max} = \frac{\max_i |u_i - u(x_i)|}{\max_i |u(x_i)|}.
-     * \f]
-     */
-    struct ErrorNorms
-    {
-      double l2  = 0;
-      double max = 0;
-      /**
-       * Scabbia et al. 2023, Eq. 38: the largest over the nodes of
-       * \f$\big(\sum_c ((u_{i,c} - \bar u_c(x_i)) / \max_j |\bar u_c(x_j)|)^2
-       * \big)^{1/2}\f$, each component scaled by its own largest analytical
-       * magnitude (components that vanish everywhere are left out).
-       */
-      double max_normalized = 0;
-    };
-
-    /**
-     * What a run measured: sizes, solver report, errors, the wall time of
-     * each phase and the peak memory; written to the summary CSV.
-     */
-    struct RunSummary
-    {
-      unsigned int                  n_ranks             = 1;
-      types::global_dof_index       n_nodes             = 0;
-      types::global_dof_index       n_constrained_nodes = 0;
-      double                        h = 0, horizon = 0;
-      std::size_t                   n_bonds    = 0;
-      std::size_t                   n_nonzeros = 0;
-      Solvers::SolverReport         solver;
-      double                        equilibrium_residual = 0;
-      std::string                   treatment            = "none";
-      unsigned int                  taylor_order         = 0;
-      types::global_dof_index       n_unknowns           = 0;
-      unsigned int                  n_surface_nodes      = 0;
-      unsigned int                  n_fictitious_nodes   = 0;
-      bool                          has_errors           = false;
-      ErrorNorms                    errors;
-      std::map<std::string, double> seconds;
-      double                        peak_memory_mb = 0;
-    };
-
     /**
      * One PD simulation described entirely by a parameter file: the
      * tutorial-plain driver behind the `perideal` program.
@@ -128,7 +82,7 @@ namespace PeriDEAL
       parse_parameters(ParameterHandler &prm);
 
       /// Run the whole problem and return what it measured.
-      RunSummary
+      IO::RunSummary
       run();
 
       /// @name The shared set-up, for problem types
@@ -232,7 +186,7 @@ namespace PeriDEAL
       std::pair<std::string, std::string>
       get_stiffness_entry() const;
 
-      RunSummary &
+      IO::RunSummary &
       get_summary();
       /// @}
 
@@ -255,9 +209,6 @@ namespace PeriDEAL
 
       void
       setup_nodes();
-
-      void
-      write_summary_file() const;
 
       /**
        * Refuse a material model whose bond stiffness at this horizon is
@@ -327,7 +278,7 @@ namespace PeriDEAL
       Discretization::NodeSet<dim>                      nodes;
       Discretization::NeighborList<dim>                 neighbor_lists;
 
-      RunSummary summary;
+      IO::RunSummary summary;
     };
   } // namespace Problems
 } // namespace PeriDEAL

@@ -22,7 +22,7 @@ namespace PeriDEAL
         const MPI_Comm                           communicator;
         ConditionalOStream                      &pcout;
         TimerOutput                             &timer;
-        RunSummary                              &summary;
+        IO::RunSummary                          &summary;
         const DoFHandler<dim>                   &dof_handler;
         const parallel::TriangulationBase<dim>  &triangulation;
         const Discretization::NodeSet<dim>      &nodes;
