@@ -10,8 +10,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <perideal/base/shared_libraries.h>
 #include <perideal/problems/simulator.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -43,6 +45,59 @@ namespace
   }
 
 
+  // ParameterHandler's errors name an entry without its subsection ("Line
+  // <5> of file <a.prm>: ... the entry named Subdivisions does not match
+  // the given pattern ..."; "No entry with name <m-ration> was declared").
+  // Said again in PeriDEAL's form, with the entry's path and value read from
+  // that line of the file; other messages are returned as they are.
+  std::string
+  explain_parse_error(const std::string &file, const std::string &message)
+  {
+    const std::string line_tag = "Line <";
+    const auto        at       = message.find(line_tag);
+    if (at == std::string::npos)
+      return message;
+    const unsigned int number =
+      std::strtoul(message.c_str() + at + line_tag.size(), nullptr, 10);
+    std::ifstream            in(file);
+    std::string              text, name, value;
+    std::vector<std::string> path;
+    for (unsigned int n = 1; n <= number && std::getline(in, text); ++n)
+      {
+        text = Utilities::trim(text.substr(0, text.find('#')));
+        if (text.rfind("subsection ", 0) == 0)
+          path.push_back(Utilities::trim(text.substr(11)));
+        else if (text == "end" && !path.empty())
+          path.pop_back();
+        else if (n == number && text.rfind("set ", 0) == 0 &&
+                 text.find('=') != std::string::npos)
+          {
+            const auto equal = text.find('=');
+            name             = Utilities::trim(text.substr(4, equal - 4));
+            value            = Utilities::trim(text.substr(equal + 1));
+          }
+      }
+    if (name.empty())
+      return message;
+    for (auto p = path.rbegin(); p != path.rend(); ++p)
+      name = *p + "/" + name;
+    const std::string where =
+      " (line " + std::to_string(number) + " of '" + file + "')";
+    if (message.find("No entry with name") != std::string::npos)
+      return "The entry '" + name + "' = '" + value + "'" + where +
+             " is not declared: check its spelling and its subsection; "
+             "'perideal --print-parameters' lists every entry.\n";
+    const std::string pattern_tag = "does not match the given pattern:";
+    const auto        pattern     = message.find(pattern_tag);
+    if (pattern == std::string::npos)
+      return message;
+    return "Invalid value '" + value + "' for the parameter '" + name +
+           "': it does not match the allowed form " +
+           Utilities::trim(message.substr(pattern + pattern_tag.size())) +
+           where + ".\n";
+  }
+
+
   void
   print_usage(std::ostream &out)
   {
@@ -67,7 +122,14 @@ namespace
     ParameterHandler prm;
     prm.declare_entry("Dimension", "3", Patterns::Integer(1, 3));
     prm.declare_entry("Problem type", "", Patterns::Anything());
-    prm.parse_input(file, "", /*skip_undefined*/ true);
+    try
+      {
+        prm.parse_input(file, "", /*skip_undefined*/ true);
+      }
+    catch (const ExceptionBase &exc)
+      {
+        throw InputError(explain_parse_error(file, user_message(exc)));
+      }
     const unsigned int dim = prm.get_integer("Dimension");
     // 1D has fewer problem types than 2D and 3D: say so, rather than let
     // the full parse report only the pattern.
@@ -90,7 +152,14 @@ namespace
   {
     ParameterHandler prm;
     PeriDEAL::Problems::Simulator<dim>::declare_parameters(prm);
-    prm.parse_input(file);
+    try
+      {
+        prm.parse_input(file);
+      }
+    catch (const ExceptionBase &exc)
+      {
+        throw InputError(explain_parse_error(file, user_message(exc)));
+      }
     PeriDEAL::Problems::Simulator<dim>::check_input_file(file, prm);
     // The simulation is destroyed before an error propagates: its timer
     // then finishes quietly instead of warning about an exception in flight.
@@ -218,6 +287,9 @@ main(int argc, char **argv)
         throw InputError("Cannot read the parameter file '" + first +
                          "': no such readable file. Give the path of a .prm "
                          "file; examples are in parameters/.\n");
+      // A user's plugins register themselves when their library is loaded:
+      // before anything is declared, so that their names are selectable.
+      PeriDEAL::load_shared_libraries(first, MPI_COMM_WORLD);
       const unsigned int dim = read_dimension(first);
       if (dim == 1)
         run<1>(first);

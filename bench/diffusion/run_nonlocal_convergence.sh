@@ -148,7 +148,8 @@ PY
         consts="k1=$k1, k2=$k2, k3=$k3, dt=$dt"
         if [ "$scheme" = cn ]; then
           stepping="  set Time stepping      = implicit
-  set Implicit scheme    = Crank-Nicolson"
+  set Implicit scheme    = Crank-Nicolson
+  set Solver tolerance   = 1e-12"
           decay="exp(-lam*t)"
         else
           stepping="  set Time stepping      = explicit"
@@ -173,7 +174,6 @@ subsection diffusion
 $stepping
   set Time step          = $dt
   set End time           = $T
-  set Solver tolerance   = 1e-12
   set Dirichlet boundary ids    = $ids
   set Dirichlet layer thickness = 1
   subsection Initial concentration

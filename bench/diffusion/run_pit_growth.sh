@@ -135,13 +135,16 @@ echo "$cases" | while read -r name kind delta m width ymin layer open end iface 
       outint = T / (dim == 3 ? 4 : 10)
       printf "%.10g %.10g %d %d %.10g %.10g %.10g %d %s %d %.10g\n",
              h, ymax, nx + 0.5, ny + 0.5, xw, film, top, dim, tpl, hist, outint }')"
+  # The constants of the other interface model would have no effect (an
+  # error): their lines are dropped, as in run_pit_growth_1d.sh.
   case "$iface" in
-    dr) interface="dissolution rate" ;;
-    id) interface="interface diffusivity" ;;
+    dr) interface="dissolution rate"; drop='@KLS@' ;;
+    id) interface="interface diffusivity"; drop='@I@' ;;
     *) echo "bad interface $iface" >&2; exit 2 ;;
   esac
   prm="$out/inputs/$name.prm"
-  sed -e "s|@W@|${width}e-6|g; s|@XW@|${xw}e-6|g; s|@S0@|${layer}e-6|g" \
+  sed -e "/^ *set .*$drop/d" \
+      -e "s|@W@|${width}e-6|g; s|@XW@|${xw}e-6|g; s|@S0@|${layer}e-6|g" \
       -e "s|@YMIN@|${ymin}e-6|g; s|@YMAX@|${ymax}e-6|g; s|@YTOP@|${top}e-6|g" \
       -e "s|@NX@|$nx|g; s|@NY@|$ny|g; s|@M@|$m|g; s|@END@|$end|g" \
       -e "s|@F@|${film}e-6|g; s|@A@|${open}e-6|g" \

@@ -5,6 +5,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/base/input_checks.h>
 #include <perideal/boundary/boundary_conditions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/discretization/crack_geometry.h>
@@ -20,13 +21,31 @@ namespace PeriDEAL
     {
       const char *const component_names = "x|y|z";
 
+      // Whether the function of the current subsection uses its time
+      // variable: the last of 'Variable names' when there are dim + 1 (as
+      // ParsedFunction decides).
+      bool
+      uses_time(ParameterHandler &prm, const unsigned int dim)
+      {
+        const auto names =
+          Utilities::split_string_list(prm.get("Variable names"));
+        return names.size() == dim + 1 &&
+               expression_uses_variable(prm.get("Function expression"),
+                                        names.back());
+      }
+
+
       // A vector function in the subsection @p name: checks the number of
-      // components before deal.II's parser does, to name the entry.
+      // components before deal.II's parser does, to name the entry; sets
+      // @p time_dependent to whether it uses t.
       template <int dim>
       std::unique_ptr<Functions::ParsedFunction<dim>>
-      parse_vector_function(ParameterHandler &prm, const std::string &name)
+      parse_vector_function(ParameterHandler  &prm,
+                            const std::string &name,
+                            bool              &time_dependent)
       {
         prm.enter_subsection(name);
+        time_dependent               = uses_time(prm, dim);
         const std::string expression = prm.get("Function expression");
         const auto        n_given =
           Utilities::split_string_list(expression, ';').size();
@@ -167,6 +186,15 @@ namespace PeriDEAL
       dirichlet_boxes =
         Discretization::parse_boxes<dim>(dirichlet_boxes_text,
                                          "Boundary conditions/Dirichlet boxes");
+      AssertThrow(!components.empty() ||
+                    (dirichlet_ids.empty() && dirichlet_boxes.empty()),
+                  ExcInvalidInput("Boundary conditions/Dirichlet components",
+                                  prm.get("Dirichlet components"),
+                                  "with no component the Dirichlet layers "
+                                  "and boxes would prescribe nothing; name "
+                                  "the prescribed components (e.g. 'x, y'), "
+                                  "or remove 'Dirichlet boundary ids' and "
+                                  "'Dirichlet boxes'"));
       layer_thickness      = prm.get_double("Dirichlet layer thickness");
       layer_thickness_text = prm.get("Dirichlet layer thickness");
       AssertThrow(
@@ -176,12 +204,36 @@ namespace PeriDEAL
                         "give a thickness > 0 (in horizons), for instance 1"));
 
       dirichlet_displacement =
-        parse_vector_function<dim>(prm, "Dirichlet displacement");
-      body_force           = parse_vector_function<dim>(prm, "Body force");
-      traction             = parse_vector_function<dim>(prm, "Traction");
+        parse_vector_function<dim>(prm,
+                                   "Dirichlet displacement",
+                                   dirichlet_uses_time);
+      body_force =
+        parse_vector_function<dim>(prm, "Body force", body_force_uses_time);
+      traction =
+        parse_vector_function<dim>(prm, "Traction", traction_uses_time);
       traction_from_stress = prm.get("Traction given as") == "stress tensor";
+      prm.enter_subsection("Body force");
+      zero_body_force = true;
+      for (const auto &component : Utilities::split_string_list(
+             prm.get("Function expression"), ';'))
+        {
+          std::size_t used = 0;
+          double      x    = 1;
+          try
+            {
+              x = std::stod(component, &used);
+            }
+          catch (...)
+            {
+              used = 0;
+            }
+          zero_body_force =
+            zero_body_force && used == component.size() && x == 0;
+        }
+      prm.leave_subsection();
       prm.enter_subsection("Boundary stress");
       {
+        stress_uses_time = uses_time(prm, dim);
         const std::string expression = prm.get("Function expression");
         const auto        n_given =
           Utilities::split_string_list(expression, ';').size();
@@ -392,9 +444,52 @@ namespace PeriDEAL
       const AffineConstraints<double>    &constraints,
       TrilinosWrappers::MPI::Vector      &load) const
     {
+      collect_load(dof_handler, nodes, constraints, load, nullptr);
+    }
+
+
+    template <int dim>
+    std::vector<typename BoundaryConditions<dim>::LoadSite>
+    BoundaryConditions<dim>::add_constant_load(
+      const DoFHandler<dim>              &dof_handler,
+      const Discretization::NodeSet<dim> &nodes,
+      const AffineConstraints<double>    &constraints,
+      TrilinosWrappers::MPI::Vector      &load) const
+    {
+      std::vector<LoadSite> sites;
+      collect_load(dof_handler, nodes, constraints, load, &sites);
+      return sites;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::collect_load(
+      const DoFHandler<dim>              &dof_handler,
+      const Discretization::NodeSet<dim> &nodes,
+      const AffineConstraints<double>    &constraints,
+      TrilinosWrappers::MPI::Vector      &load,
+      std::vector<LoadSite>              *sites) const
+    {
+      const bool body_later = sites != nullptr && body_force_uses_time;
+      const bool traction_later =
+        sites != nullptr &&
+        (traction_from_stress ? stress_uses_time : traction_uses_time);
       Vector<double> value(dim);
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
+          if (body_later)
+            {
+              LoadSite site;
+              site.point   = nodes[i].location;
+              site.measure = nodes[i].volume();
+              for (unsigned int c = 0; c < dim; ++c)
+                site.dofs[c] = constraints.is_constrained(nodes[i].dofs[c]) ?
+                                 numbers::invalid_dof_index :
+                                 nodes[i].dofs[c];
+              sites->push_back(site);
+              continue;
+            }
           body_force->vector_value(nodes[i].location, value);
           for (unsigned int c = 0; c < dim; ++c)
             if (!constraints.is_constrained(nodes[i].dofs[c]))
@@ -420,12 +515,27 @@ namespace PeriDEAL
                         axis = d;
                     Tensor<1, dim> normal;
                     normal[axis] = out[axis] > 0 ? 1 : -1;
-                    const Tensor<1, dim> t =
-                      traction_value(cell->face(f)->center(), normal);
                     // A 1D face is a point: the traction is a force.
                     double area = 1;
                     if constexpr (dim > 1)
                       area = cell->face(f)->measure();
+                    if (traction_later)
+                      {
+                        LoadSite site;
+                        site.point   = cell->face(f)->center();
+                        site.normal  = normal;
+                        site.measure = area;
+                        site.on_face = true;
+                        for (unsigned int k = 0; k < dofs.size(); ++k)
+                          site.dofs[fe.system_to_component_index(k).first] =
+                            constraints.is_constrained(dofs[k]) ?
+                              numbers::invalid_dof_index :
+                              dofs[k];
+                        sites->push_back(site);
+                        continue;
+                      }
+                    const Tensor<1, dim> t =
+                      traction_value(cell->face(f)->center(), normal);
                     for (unsigned int k = 0; k < dofs.size(); ++k)
                       if (!constraints.is_constrained(dofs[k]))
                         load[dofs[k]] +=
@@ -448,6 +558,99 @@ namespace PeriDEAL
             break;
           }
       throw_on_any_rank(non_finite, dof_handler.get_communicator());
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BoundaryConditions<dim>::load_at(const LoadSite &site) const
+    {
+      return site.measure * (site.on_face ?
+                               traction_value(site.point, site.normal) :
+                               body_force_value(site.point));
+    }
+
+
+    template <int dim>
+    std::string
+    BoundaryConditions<dim>::load_entry(const LoadSite &site) const
+    {
+      return !site.on_face        ? "Boundary conditions/Body force" :
+             traction_from_stress ? "Boundary conditions/Boundary stress" :
+                                    "Boundary conditions/Traction";
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::load_depends_on_time() const
+    {
+      return body_force_uses_time ||
+             (!traction_ids.empty() &&
+              (traction_from_stress ? stress_uses_time : traction_uses_time));
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::dirichlet_depends_on_time() const
+    {
+      return dirichlet_uses_time;
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::has_dirichlet() const
+    {
+      return !dirichlet_ids.empty() || !dirichlet_boxes.empty();
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::has_load() const
+    {
+      return !zero_body_force || !traction_ids.empty();
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    BoundaryConditions<dim>::unused_entries() const
+    {
+      const std::string        section = "Boundary conditions/";
+      std::vector<UnusedEntry> unused;
+      if (!has_dirichlet())
+        for (const char *entry :
+             {"Dirichlet components", "Dirichlet displacement/"})
+          unused.push_back({section + entry,
+                            "neither 'Dirichlet boundary ids' nor 'Dirichlet "
+                            "boxes' is given, so nothing is prescribed; give "
+                            "them, or remove the entry"});
+      if (dirichlet_ids.empty())
+        unused.push_back({section + "Dirichlet layer thickness",
+                          "it is the thickness of the layers along "
+                          "'Dirichlet boundary ids', and none are given; "
+                          "give them, or remove the entry"});
+      if (traction_ids.empty())
+        for (const char *entry :
+             {"Traction/", "Boundary stress/", "Traction given as"})
+          unused.push_back({section + entry,
+                            "no 'Traction boundary ids' are given, so no "
+                            "face carries a traction; give them, or remove "
+                            "the entry"});
+      else if (traction_from_stress)
+        unused.push_back({section + "Traction/",
+                          "'Traction given as = stress tensor' takes the "
+                          "traction from 'Boundary stress'; set 'Traction "
+                          "given as = vector' to use this function"});
+      else
+        unused.push_back({section + "Boundary stress/",
+                          "'Traction given as = vector' takes the traction "
+                          "from 'Traction'; set 'Traction given as = stress "
+                          "tensor' to use this function"});
+      return unused;
     }
 
 

@@ -5,6 +5,7 @@
 #include <perideal/discretization/crack_geometry.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace PeriDEAL
 {
@@ -78,6 +79,101 @@ namespace PeriDEAL
                (o3 == 0 && on_segment(c, d, a)) ||
                (o4 == 0 && on_segment(c, d, b));
       }
+
+      /**
+       * Refuse a 3D pre-crack polygon that is not a simple polygon in one
+       * plane, each fault in its own words: collinear vertices (no plane),
+       * vertices off the plane, a repeated vertex, or edges that cross
+       * (an edge order that is not the order around the boundary). Newell's
+       * normal alone cannot tell these apart: a symmetric bow tie has zero
+       * area, like a segment.
+       */
+      void
+      check_simple_polygon(const std::vector<Point<3>> &vertices,
+                           const std::size_t            number,
+                           const std::string           &entry,
+                           const std::string           &text)
+      {
+        const unsigned int n    = vertices.size();
+        const std::string  name = "pre-crack polygon " + std::to_string(number);
+        const BoundingBox<3> box(vertices);
+        const double         size =
+          box.side_length(0) + box.side_length(1) + box.side_length(2);
+        // The plane: the largest cross product of two edges from the first
+        // vertex (well conditioned whatever the vertex order).
+        Tensor<1, 3> normal;
+        for (unsigned int k = 1; k < n; ++k)
+          for (unsigned int l = k + 1; l < n; ++l)
+            {
+              const Tensor<1, 3> c = cross_product_3d(vertices[k] - vertices[0],
+                                                      vertices[l] - vertices[0]);
+              if (c.norm() > normal.norm())
+                normal = c;
+            }
+        AssertThrow(normal.norm() > 1e-12 * size * size,
+                    ExcInvalidInput(entry,
+                                    text,
+                                    "the " + name +
+                                      " has no area (collinear vertices)"));
+        normal /= normal.norm();
+        for (const auto &p : vertices)
+          AssertThrow(std::abs((p - vertices[0]) * normal) <= 1e-9 * size,
+                      ExcInvalidInput(entry,
+                                      text,
+                                      "the vertices of a pre-crack "
+                                      "polygon must lie in one plane"));
+        Tensor<1, 3> u = vertices[1] - vertices[0];
+        for (const auto &p : vertices)
+          if ((p - vertices[0]).norm() > u.norm())
+            u = p - vertices[0];
+        u /= u.norm();
+        const Tensor<1, 3>    v = cross_product_3d(normal, u);
+        std::vector<Point<2>> q;
+        for (const auto &p : vertices)
+          q.emplace_back((p - vertices[0]) * u, (p - vertices[0]) * v);
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int l = k + 1; l < n; ++l)
+            AssertThrow(q[k].distance(q[l]) > 1e-12 * size,
+                        ExcInvalidInput(entry,
+                                        text,
+                                        "vertices " + std::to_string(k + 1) +
+                                          " and " + std::to_string(l + 1) +
+                                          " of the " + name +
+                                          " coincide; give each vertex "
+                                          "once"));
+        const auto edge = [&](const unsigned int k) {
+          return std::to_string(k + 1) + "-" + std::to_string((k + 1) % n + 1);
+        };
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int l = k + 1; l < n; ++l)
+            {
+              const Point<2> &a = q[k], &b = q[(k + 1) % n], &c = q[l],
+                             &d = q[(l + 1) % n];
+              bool cross = false;
+              if (l == k + 1 || (k == 0 && l == n - 1))
+                {
+                  // Neighbouring edges share a vertex; they overlap only
+                  // where the boundary folds back on itself.
+                  const Point<2> &shared = l == k + 1 ? b : a;
+                  const Point<2> &p      = l == k + 1 ? a : b;
+                  const Point<2> &r      = l == k + 1 ? d : c;
+                  cross = std::abs(orientation(shared, p, r)) <=
+                            1e-12 * size * size &&
+                          (p - shared) * (r - shared) > 0;
+                }
+              else
+                cross = segments_intersect(a, b, c, d);
+              AssertThrow(!cross,
+                          ExcInvalidInput(entry,
+                                          text,
+                                          "the " + name +
+                                            " intersects itself (its edges " +
+                                            edge(k) + " and " + edge(l) +
+                                            " meet); list the vertices in "
+                                            "order around the boundary of "
+                                            "the polygon"));
+            }
+      }
     } // namespace
 
 
@@ -114,8 +210,21 @@ namespace PeriDEAL
               crack.vertices.push_back(p);
             }
           crack.box = BoundingBox<dim>(crack.vertices);
+          if constexpr (dim == 2)
+            AssertThrow(crack.vertices[0] != crack.vertices[1],
+                        ExcInvalidInput(entry,
+                                        text,
+                                        "the pre-crack segment " +
+                                          std::to_string(cracks.size() + 1) +
+                                          " has zero length (both ends at "
+                                          "the same point); give two "
+                                          "different end points"));
           if constexpr (dim == 3)
             {
+              check_simple_polygon(crack.vertices,
+                                   cracks.size() + 1,
+                                   entry,
+                                   text);
               // Newell's normal; every vertex must lie in its plane.
               Tensor<1, dim>     normal;
               const unsigned int n = crack.vertices.size();
@@ -156,10 +265,19 @@ namespace PeriDEAL
     bool
     PreCracks<dim>::cuts(const Point<dim> &a, const Point<dim> &b) const
     {
+      return first_cut(a, b) >= 0;
+    }
+
+
+    template <int dim>
+    int
+    PreCracks<dim>::first_cut(const Point<dim> &a, const Point<dim> &b) const
+    {
       BoundingBox<dim> bond(std::make_pair(a, a));
       bond.merge_with(BoundingBox<dim>(std::make_pair(b, b)));
-      for (const auto &crack : cracks)
+      for (unsigned int index = 0; index < cracks.size(); ++index)
         {
+          const auto &crack = cracks[index];
           bool overlap = true;
           for (unsigned int d = 0; d < dim; ++d)
             overlap = overlap &&
@@ -173,7 +291,7 @@ namespace PeriDEAL
                                      b,
                                      crack.vertices[0],
                                      crack.vertices[1]))
-                return true;
+                return index;
             }
           else
             {
@@ -201,20 +319,22 @@ namespace PeriDEAL
                     inside = !inside;
                 }
               if (inside)
-                return true;
+                return index;
             }
         }
-      return false;
+      return -1;
     }
 
 
     template <int dim>
     std::size_t
-    PreCracks<dim>::break_bonds(const NodeSet<dim>      &nodes,
-                                const NeighborList<dim> &lists,
-                                BondState<dim>          &state,
-                                const double             reach) const
+    PreCracks<dim>::break_bonds(const NodeSet<dim>       &nodes,
+                                const NeighborList<dim>  &lists,
+                                BondState<dim>           &state,
+                                const double              reach,
+                                std::vector<std::size_t> *per_crack) const
     {
+      std::vector<std::size_t> count(cracks.size(), 0);
       if (!cracks.empty())
         for (unsigned int i = 0; i < nodes.size(); ++i)
           if (lists.has_list(i))
@@ -231,9 +351,22 @@ namespace PeriDEAL
               if (!near)
                 continue;
               for (unsigned int k = 0; k < lists.n_bonds(i); ++k)
-                if (cuts(x, nodes[state.neighbor(i, k)].location))
+                {
+                  const int crack =
+                    first_cut(x, nodes[state.neighbor(i, k)].location);
+                  if (crack < 0)
+                    continue;
                   state.break_bond(i, k);
+                  if (i < nodes.n_owned())
+                    ++count[crack];
+                }
             }
+      if (per_crack != nullptr)
+        {
+          if (!count.empty())
+            Utilities::MPI::sum(count, nodes.get_communicator(), count);
+          *per_crack = count;
+        }
       return state.synchronize();
     }
 
@@ -249,10 +382,12 @@ namespace PeriDEAL
                       ExcInvalidInput(entry,
                                       text,
                                       std::string("a box is '") +
-                                        (dim == 2 ? "xmin, ymin, xmax, ymax" :
+                                        (dim == 1 ? "xmin, xmax" :
+                                         dim == 2 ? "xmin, ymin, xmax, ymax" :
                                                     "xmin, ymin, zmin, xmax, "
                                                     "ymax, zmax") +
-                                        "'; separate boxes with ';'"));
+                                        "' in this " + std::to_string(dim) +
+                                        "D run; separate boxes with ';'"));
           Point<dim> lower, upper;
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -281,8 +416,11 @@ namespace PeriDEAL
                       ExcInvalidInput(entry,
                                       text,
                                       std::string("a point is '") +
-                                        (dim == 2 ? "x, y" : "x, y, z") +
-                                        "'; separate points with ';'"));
+                                        (dim == 1 ? "x" :
+                                         dim == 2 ? "x, y" :
+                                                    "x, y, z") +
+                                        "' in this " + std::to_string(dim) +
+                                        "D run; separate points with ';'"));
           Point<dim> p;
           for (unsigned int d = 0; d < dim; ++d)
             p[d] = numbers[d];
@@ -325,6 +463,37 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    void
+    check_points_in_body(const NodeSet<dim>            &nodes,
+                         const std::vector<Point<dim>> &points,
+                         const std::string             &entry,
+                         const std::string             &text)
+    {
+      if (points.empty())
+        return;
+      std::vector<unsigned int> inside(points.size(), 0);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int k = 0; k < points.size(); ++k)
+          if (nodes[i].cell.point_inside(points[k], 1e-10))
+            inside[k] = 1;
+      Utilities::MPI::max(inside, nodes.get_communicator(), inside);
+      for (unsigned int k = 0; k < points.size(); ++k)
+        {
+          std::ostringstream point;
+          point << points[k];
+          AssertThrow(inside[k] != 0,
+                      ExcInvalidInput(entry,
+                                      text,
+                                      "point " + std::to_string(k + 1) +
+                                        " (" + point.str() +
+                                        ") lies outside the body, where "
+                                        "no node is; give a point on the "
+                                        "body"));
+        }
+    }
+
+
     template class PreCracks<2>;
     template class PreCracks<3>;
     template std::vector<BoundingBox<1>>
@@ -351,6 +520,16 @@ namespace PeriDEAL
                       const std::string &,
                       const std::string &,
                       const std::string &);
+    template void
+    check_points_in_body<2>(const NodeSet<2> &,
+                            const std::vector<Point<2>> &,
+                            const std::string &,
+                            const std::string &);
+    template void
+    check_points_in_body<3>(const NodeSet<3> &,
+                            const std::vector<Point<3>> &,
+                            const std::string &,
+                            const std::string &);
     template std::vector<bool>
     nodes_in_boxes<3>(const NodeSet<3> &,
                       const std::vector<BoundingBox<3>> &,

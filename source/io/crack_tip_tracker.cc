@@ -51,7 +51,9 @@ namespace PeriDEAL
       active = points.size() == 1;
       if (active)
         origin = points[0];
-      region    = Discretization::parse_boxes<dim>(prm.get("Crack tip region"),
+      origin_text = text;
+      region_text = prm.get("Crack tip region");
+      region      = Discretization::parse_boxes<dim>(region_text,
                                                 section + "/Crack tip region");
       threshold = prm.get_double("Crack tip damage");
       AssertThrow(threshold > 0,
@@ -59,6 +61,26 @@ namespace PeriDEAL
                                   prm.get("Crack tip damage"),
                                   "give a damage above 0 (undamaged nodes "
                                   "would count), for instance 0.35"));
+    }
+
+
+    template <int dim>
+    void
+    CrackTipTracker<dim>::check_on_body(
+      const Discretization::NodeSet<dim> &nodes,
+      const std::string                  &section) const
+    {
+      if (!active)
+        return;
+      Discretization::check_points_in_body(nodes,
+                                           {origin},
+                                           section + "/Crack tip origin",
+                                           origin_text);
+      Discretization::nodes_in_boxes(nodes,
+                                     region,
+                                     section + "/Crack tip region",
+                                     region_text,
+                                     "counts no node for the crack tip");
     }
 
 

@@ -60,6 +60,29 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<OutputName>
+    SolutionOutput<dim>::output_names(const bool time_series) const
+    {
+      if (!write_vtu)
+        return {};
+      const std::string stem = output_directory + "/" + base_name;
+      std::vector<OutputName> names = {{"Output/Base name",
+                                        base_name,
+                                        stem,
+                                        OutputName::Kind::records,
+                                        "the solution records ('" + base_name +
+                                          "_<n>.pvtu' and their pieces)"}};
+      if (time_series)
+        names.push_back({"Output/Base name",
+                         base_name,
+                         stem + ".pvd",
+                         OutputName::Kind::file,
+                         "the time series"});
+      return names;
+    }
+
+
+    template <int dim>
     std::string
     SolutionOutput<dim>::write(
       const DoFHandler<dim>               &dof_handler,

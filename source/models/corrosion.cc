@@ -131,15 +131,16 @@ namespace PeriDEAL
       prm.declare_entry("Pit depth origin",
                         "",
                         Patterns::Anything(),
-                        "A point 'x, y[, z]' on the initial metal surface; "
-                        "empty: the origin.");
+                        "A point on the initial metal surface, one "
+                        "coordinate per dimension of the run: 'x' (1D), "
+                        "'x, y' (2D), 'x, y, z' (3D); empty: the origin.");
       prm.declare_entry(
         "Pit depth direction",
         "",
         Patterns::Anything(),
-        "The direction 'x, y[, z]' into the metal along "
-        "which the pit depth is measured; empty: -x (1D), -y (2D), "
-        "-z (3D).");
+        "The direction into the metal along which the pit depth is "
+        "measured, one component per dimension of the run: 'x' (1D), "
+        "'x, y' (2D), 'x, y, z' (3D); empty: -x (1D), -y (2D), -z (3D).");
     }
 
 
@@ -167,6 +168,7 @@ namespace PeriDEAL
                                   "give a value in [0, C_sat)"));
       interface_model       = prm.get("Interface model");
       current_density       = prm.get_double("Current density");
+      current_density_text  = prm.get("Current density");
       valence               = prm.get_double("Valence");
       interface_diffusivity = prm.get_double("Interface diffusivity");
       if (interface_model == "dissolution rate")
@@ -222,6 +224,39 @@ namespace PeriDEAL
                                       "give one non-zero vector"));
           depth_direction = points[0] / points[0].norm();
         }
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    Corrosion<dim>::unused_entries() const
+    {
+      std::vector<UnusedEntry> unused = {
+        {"Initial concentration/",
+         "with 'Model = corrosion' the initial concentration follows from "
+         "'corrosion/Initial phase' ('Initial electrolyte concentration' in "
+         "the electrolyte, 'Solid concentration' in the metal); remove the "
+         "subsection"}};
+      const std::string own = "corrosion/";
+      if (interface_model == "dissolution rate")
+        unused.push_back({own + "Interface diffusivity",
+                          "'Interface model = dissolution rate' takes the "
+                          "rate from 'Current density' and 'Valence'; set "
+                          "'Interface model = interface diffusivity' to use "
+                          "it, or remove the entry"});
+      else
+        for (const char *entry : {"Current density", "Valence"})
+          unused.push_back({own + entry,
+                            "'Interface model = interface diffusivity' "
+                            "takes the flow from 'Interface diffusivity'; "
+                            "set 'Interface model = dissolution rate' to use "
+                            "it, or remove the entry"});
+      if (!with_damage)
+        unused.push_back({own + "Damage seed",
+                          "'Mechanical damage' is false, so no bond "
+                          "thresholds are drawn; set it to true, or remove "
+                          "the entry"});
+      return unused;
     }
 
 
@@ -380,6 +415,19 @@ namespace PeriDEAL
       if (rho > 0)
         return c_sat / (rho * setup.op.largest_row_sum());
       return std::numeric_limits<double>::infinity();
+    }
+
+
+    template <int dim>
+    typename DiffusionModel<dim>::TimeStepLimit
+    Corrosion<dim>::time_step_limit() const
+    {
+      return {"no node may gain more than '" + section +
+                "/Saturation concentration' = " + c_sat_text +
+                " by dissolution in one step at 'Current density' = " +
+                current_density_text,
+              section + "/Current density",
+              current_density_text};
     }
 
 

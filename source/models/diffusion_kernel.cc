@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace PeriDEAL
 {
@@ -45,7 +46,9 @@ namespace PeriDEAL
     DiffusionKernel::parse_parameters(ParameterHandler  &prm,
                                       const std::string &section)
     {
-      K = prm.get_double("Diffusivity");
+      K                = prm.get_double("Diffusivity");
+      diffusivity_text = prm.get("Diffusivity");
+      section_name     = section;
       AssertThrow(K > 0 && std::isfinite(K),
                   ExcInvalidInput(section + "/Diffusivity",
                                   prm.get("Diffusivity"),
@@ -84,6 +87,27 @@ namespace PeriDEAL
       AssertThrow(omega != nullptr, ExcMessage("parse_parameters() first"));
       horizon = horizon_;
       kappa   = 2. * dim * K / ball_moment(dim, horizon, 2 - int(q), *omega);
+      check_kappa();
+    }
+
+
+    void
+    DiffusionKernel::check_kappa() const
+    {
+      if (std::isfinite(kappa) && kappa > 0)
+        return;
+      std::ostringstream why;
+      why << "with the horizon " << horizon
+          << " the micro-diffusivity kappa (the diffusivity over the horizon "
+             "to the power d + 2 - q) is "
+          << kappa
+          << ", out of the range of double precision numbers (about 1e-308 "
+             "to 1e308); give the diffusivity of a real medium, about 1e-12 "
+             "to 1e-3 m^2/s (or of order 1 in nondimensional units)";
+      AssertThrow(false,
+                  ExcInvalidInput(section_name + "/Diffusivity",
+                                  diffusivity_text,
+                                  why.str()));
     }
 
 
@@ -109,6 +133,7 @@ namespace PeriDEAL
         }
       AssertThrow(sum > 0, ExcMessage("The stencil has no bonds."));
       kappa = 2. * dim * K / sum;
+      check_kappa();
     }
 
 

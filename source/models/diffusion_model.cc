@@ -11,6 +11,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    DiffusionModel<dim>::unused_entries() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
     bool
     DiffusionModel<dim>::supports_implicit() const
     {
@@ -29,6 +37,14 @@ namespace PeriDEAL
     DiffusionModel<dim>::largest_time_step(const DiffusionSetup<dim> &) const
     {
       return std::numeric_limits<double>::infinity();
+    }
+
+
+    template <int dim>
+    typename DiffusionModel<dim>::TimeStepLimit
+    DiffusionModel<dim>::time_step_limit() const
+    {
+      return {};
     }
 
 

@@ -95,6 +95,10 @@ namespace PeriDEAL
                       ExcInvalidInput("Shear modulus",
                                       str(shear),
                                       "give a shear modulus > 0"));
+          stiffness_entry =
+            bulk >= shear ?
+              std::make_pair("Bulk modulus", prm.get("Bulk modulus")) :
+              std::make_pair("Shear modulus", prm.get("Shear modulus"));
         }
       else
         {
@@ -111,6 +115,7 @@ namespace PeriDEAL
                                       "-1 < nu < 0.5"));
           bulk  = E / (3 * (1 - 2 * nu));
           shear = E / (2 * (1 + nu));
+          stiffness_entry = {"Young's modulus", prm.get("Young's modulus")};
         }
     }
 
@@ -155,6 +160,8 @@ namespace PeriDEAL
     IsotropicModel<dim>::parse_parameters(ParameterHandler &prm)
     {
       constants.parse_parameters(prm);
+      given_as_moduli =
+        prm.get("Elastic constants") == "bulk and shear modulus";
       omega = InfluenceFunctionRegistry::create(prm.get("Influence function"));
       mass_density           = prm.get_double("Density");
       given_critical_stretch = prm.get_double("Critical stretch");
@@ -173,6 +180,29 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    Model<dim>::unused_entries() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    IsotropicModel<dim>::unused_entries() const
+    {
+      const std::string why =
+        "'Elastic constants' selects " +
+        std::string(given_as_moduli ? "the bulk and shear modulus" :
+                                      "Young's modulus and Poisson's ratio") +
+        "; give the material by those, or select the other pair";
+      if (given_as_moduli)
+        return {{"Young's modulus", why}, {"Poisson's ratio", why}};
+      return {{"Bulk modulus", why}, {"Shear modulus", why}};
+    }
+
+
+    template <int dim>
     double
     Model<dim>::critical_stretch(const double) const
     {
@@ -185,6 +215,14 @@ namespace PeriDEAL
     Model<dim>::density() const
     {
       return 1;
+    }
+
+
+    template <int dim>
+    std::pair<std::string, std::string>
+    Model<dim>::stiffness_entry() const
+    {
+      return {};
     }
 
 
@@ -223,6 +261,14 @@ namespace PeriDEAL
     IsotropicModel<dim>::density() const
     {
       return mass_density;
+    }
+
+
+    template <int dim>
+    std::pair<std::string, std::string>
+    IsotropicModel<dim>::stiffness_entry() const
+    {
+      return constants.stiffness_entry;
     }
 
 

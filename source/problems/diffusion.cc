@@ -175,6 +175,7 @@ namespace PeriDEAL
                         Patterns::Double(0),
                         "Print a progress line on rank 0 at most every this "
                         "many seconds of wall time.");
+      TimeLoop::declare_parameters(prm);
     }
 
 
@@ -223,19 +224,19 @@ namespace PeriDEAL
                                   "give a relative tolerance in (0, 1)"));
       max_iterations = prm.get_integer("Maximum iterations");
 
-      const auto parse_function = [&](const std::string &name, auto &function) {
-        prm.enter_subsection(name);
-        function = std::make_unique<Functions::ParsedFunction<dim>>(1);
-        function->parse_parameters(prm);
-        const std::string expression = prm.get("Function expression");
-        prm.leave_subsection();
-        return expression;
+      const auto parse = [&](const std::string &name,
+                             auto              &function,
+                             FunctionEntry     &entry) {
+        function = parse_function<dim>(prm, name, section, 1, &entry);
+        expressions[name] = entry.expression;
+        return entry.expression;
       };
-      parse_function("Initial concentration", initial);
-      with_source = parse_function("Source", source) != "0";
-      parse_function("Boundary concentration", boundary_value);
-      with_flux = parse_function("Boundary flux", boundary_flux) != "0";
-      parse_function("Analytical concentration", analytical);
+      parse("Initial concentration", initial, initial_entry);
+      with_source = parse("Source", source, source_entry) != "0";
+      parse("Boundary concentration", boundary_value, boundary_value_entry);
+      with_flux =
+        parse("Boundary flux", boundary_flux, boundary_flux_entry) != "0";
+      parse("Analytical concentration", analytical, analytical_entry);
       compare = prm.get_bool("Compare with analytical solution");
 
       dirichlet_ids_text = prm.get("Dirichlet boundary ids");
@@ -307,6 +308,7 @@ namespace PeriDEAL
       history_every_steps = prm.get_integer("History every steps");
       history_file        = prm.get("History file");
       progress_interval_s = prm.get_double("Progress interval");
+      time_loop.parse_parameters(prm, section, "");
     }
 
 
@@ -325,6 +327,80 @@ namespace PeriDEAL
                                   "the node data file is written by the "
                                   "quasi-static problem only; leave it "
                                   "empty"));
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    Diffusion<dim>::unused_entries(const Simulator<dim> &) const
+    {
+      const std::string        prefix = section + "/";
+      std::vector<UnusedEntry> unused = {
+        {"Boundary conditions/",
+         "the diffusion problem takes its boundary values and fluxes from "
+         "'diffusion/Dirichlet boundary ids', 'Boundary concentration', "
+         "'Flux boundary ids' and 'Boundary flux'; remove the subsection "
+         "'Boundary conditions'"},
+        {"Analytical solution/",
+         "the diffusion problem compares with 'diffusion/Analytical "
+         "concentration' when 'diffusion/Compare with analytical solution' "
+         "is true; remove the subsection 'Analytical solution'"}};
+      const auto add = [&](const std::vector<std::string> &entries,
+                           const std::string              &why) {
+        for (const auto &entry : entries)
+          unused.push_back({prefix + entry, why});
+      };
+      if (stepping != "implicit")
+        add({"Implicit scheme"},
+            "'Time stepping = " + stepping +
+              "' uses no implicit scheme; set 'Time stepping = implicit' to "
+              "use it, or remove the entry");
+      if (stepping == "explicit")
+        add({"Preconditioner", "Solver tolerance", "Maximum iterations"},
+            "'Time stepping = explicit' solves no linear system; remove the "
+            "entry, or choose 'implicit' or 'steady state'");
+      if (stepping == "steady state")
+        add({"Time step",
+             "End time",
+             "Output every steps",
+             "Output interval",
+             "History every steps"},
+            "'Time stepping = steady state' takes no time steps (one solve, "
+            "one output, sources and boundary values at t = 0); remove the "
+            "entry, or choose 'explicit' or 'implicit'");
+      if (stepping != "explicit" || given_time_step > 0)
+        add({"Safety factor"},
+            stepping != "explicit" ?
+              "the time step of 'Time stepping = " + stepping +
+                "' is 'Time step' itself; remove the entry" :
+              std::string("'Time step' is given, so no fraction of the "
+                          "stability bound is taken; set 'Time step = 0' to "
+                          "use it, or remove the entry"));
+      if (stepping != "explicit" || given_time_step == 0)
+        add({"Allow unstable time step"},
+            stepping != "explicit" ?
+              "'Time stepping = " + stepping +
+                "' has no stability bound to exceed; remove the entry" :
+              std::string("with 'Time step = 0' the step is 'Safety "
+                          "factor' (at most 1) times the stability bound, "
+                          "never above it; remove the entry"));
+      if (dirichlet_ids.empty())
+        add({"Dirichlet layer thickness",
+             "Dirichlet layer values",
+             "Boundary concentration/"},
+            "no 'Dirichlet boundary ids' are given, so there is no "
+            "Dirichlet layer; give them, or remove the entry");
+      if (flux_ids.empty())
+        add({"Flux layer thickness", "Flux layer values", "Boundary flux/"},
+            "no 'Flux boundary ids' are given, so no flux enters; give "
+            "them, or remove the entry");
+      if (!compare)
+        add({"Analytical concentration/"},
+            "'diffusion/Compare with analytical solution' is false; set it "
+            "to true to compare, or remove the entry");
+      for (const auto &rule : model->unused_entries())
+        unused.push_back({prefix + rule.pattern, rule.why});
+      return unused;
     }
 
 
@@ -349,10 +425,15 @@ namespace PeriDEAL
         TimerOutput::Scope scope(simulator.get_timer(), "initial state");
         initial->set_time(0);
         for (unsigned int i = 0; i < simulator.get_nodes().n_owned(); ++i)
-          c.local_element(op.vector_index(i)) =
-            initial->value(simulator.get_nodes()[i].location);
+          {
+            const auto  &x     = simulator.get_nodes()[i].location;
+            const double value = initial->value(x);
+            finite_check.value(value, initial_entry, x);
+            c.local_element(op.vector_index(i)) = value;
+          }
         model->initialize(model_setup(simulator), c);
         apply_layer_values(0, c);
+        finite_check.throw_pending(simulator.get_communicator());
       }
       if (stepping == "steady state")
         {
@@ -386,8 +467,7 @@ namespace PeriDEAL
           const bool last = step_number == n_steps;
           const bool by_steps =
             output_every_steps > 0 && step_number % output_every_steps == 0;
-          const bool by_time =
-            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
+          const bool by_time = time_loop.output_due(time, dt, next_output_time);
           const bool row = last || step_number % history_every_steps == 0;
           {
             TimerOutput::Scope model_scope(simulator.get_timer(),
@@ -414,7 +494,8 @@ namespace PeriDEAL
         simulator.get_pcout()
           << "           " << total_iterations << " solver iterations in "
           << n_steps << " steps (" << std::fixed << std::setprecision(1)
-          << double(total_iterations) / std::max(n_steps, 1u) << " per step)"
+          << double(total_iterations) / std::max<std::uint64_t>(n_steps, 1)
+          << " per step)"
           << std::defaultfloat << std::endl;
     }
 
@@ -489,9 +570,23 @@ namespace PeriDEAL
     Diffusion<dim>::choose_time_step(Simulator<dim> &simulator)
     {
       const double bound = op.gershgorin_bound();
-      AssertThrow(std::isfinite(bound) && bound > 0,
-                  ExcMessage("The stability bound of the time step is not "
-                             "finite: the operator has no bonds?"));
+      // The simulator refuses a run without bonds: a bound out of range is
+      // the diffusivity's scale (over the squared spacing) overflowing.
+      AssertThrow(std::isfinite(bound) && bound > 0 &&
+                    std::isfinite(2 / bound),
+                  ExcInvalidInput(section + "/Diffusivity",
+                                  format_number(kernel.diffusivity()),
+                                  "the stable time step 2 / lambda_G is " +
+                                    format_number(2 / bound) +
+                                    ": Gershgorin's bound lambda_G of the "
+                                    "operator, about the diffusivity over "
+                                    "the squared node spacing, is " +
+                                    format_number(bound) +
+                                    ", out of the range of double precision "
+                                    "numbers (about 1e-308 to 1e308); give "
+                                    "the diffusivity of a real medium, about "
+                                    "1e-12 to 1e-3 m^2/s (or of order 1 in "
+                                    "nondimensional units)"));
       dt_bound = 2 / bound;
       const double model_bound =
         model->largest_time_step(model_setup(simulator));
@@ -517,11 +612,26 @@ namespace PeriDEAL
                         "; give a smaller step, 0 for "
                         "the bound, or set 'Allow unstable "
                         "time step = true'"));
-      const double target =
-        given_time_step > 0 ? given_time_step : safety_factor * dt_bound;
-      n_steps = static_cast<unsigned int>(std::ceil(end_time / target - 1e-9));
-      n_steps = std::max(n_steps, 1u);
-      dt      = end_time / n_steps;
+      // Implicit schemes are stable at any step: no bound (only the count).
+      StabilityBound step_bound;
+      if (stepping == "explicit")
+        {
+          step_bound.value = dt_bound;
+          step_bound.description =
+            limited_by_model ?
+              "the limit " + format_number(dt_bound) + " of the model '" +
+                model_name + "' (" + model->time_step_limit().reason + ")" :
+              "the forward Euler bound " + format_number(dt_bound);
+          if (limited_by_model)
+            {
+              step_bound.entry       = model->time_step_limit().entry;
+              step_bound.entry_value = model->time_step_limit().value;
+            }
+        }
+      const auto plan = time_loop.plan(step_bound);
+      n_steps         = plan.n_steps;
+      dt              = plan.dt;
+      time_loop.check_output_interval(dt);
       simulator.get_pcout()
         << "[" << std::setw(8) << std::fixed << std::setprecision(2)
         << simulator.elapsed() << " s] time step " << std::scientific
@@ -632,6 +742,7 @@ namespace PeriDEAL
       op.initialize_vector(system.tmp);
       op.initialize_vector(system.result);
       x.zero_out_ghost_values();
+      check_solve_input(simulator, b, lifted, x);
       const double  norm = lifted.l2_norm();
       SolverControl control(max_iterations, std::max(tolerance * norm, 1e-300));
       const MPI_Comm comm = simulator.get_communicator();
@@ -668,6 +779,8 @@ namespace PeriDEAL
         }
       catch (const SolverControl::NoConvergence &e)
         {
+          if (!std::isfinite(e.last_residual))
+            check_solve_result(simulator, false, e.last_residual, x);
           AssertThrow(false,
                       ExcMessage(
                         "The linear solve of step " +
@@ -682,6 +795,12 @@ namespace PeriDEAL
                         "complete."));
         }
       (void)comm;
+      if (norm == 0)
+        return 0; // no iteration: last_step() would be invalid_unsigned_int
+      check_solve_result(simulator,
+                         control.last_check() == SolverControl::success,
+                         control.last_value(),
+                         x);
       return control.last_step();
     }
 
@@ -887,9 +1006,9 @@ namespace PeriDEAL
     Diffusion<dim>::write_output(Simulator<dim> &simulator)
     {
       const MPI_Comm comm = simulator.get_communicator();
-      if (output_interval > 0)
-        while (next_output_time <= time + 1e-12 * std::max(dt, 1e-300))
-          next_output_time += output_interval;
+      time_loop.advance_output_time(next_output_time,
+                                    time,
+                                    std::max(dt, 1e-300));
       const auto &output = simulator.get_output();
       if (output.enabled())
         {
@@ -954,35 +1073,44 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    Diffusion<dim>::check_finite(Simulator<dim> &simulator) const
+    Diffusion<dim>::check_finite(Simulator<dim> &simulator)
     {
-      const MPI_Comm          comm = simulator.get_communicator();
-      types::global_dof_index bad  = numbers::invalid_dof_index;
-      unsigned int            node = 0;
-      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-        if (!std::isfinite(c.local_element(op.vector_index(i))))
-          {
-            bad  = (*nodes)[i].dofs[0];
-            node = i;
-            break;
-          }
-      const auto first = Utilities::MPI::min(bad, comm);
-      if (first == numbers::invalid_dof_index)
-        return;
-      std::string message;
-      if (bad == first)
-        {
-          std::ostringstream text;
-          text << "The concentration is not finite at step " << step_number
-               << " (t = " << time << ") at the node at ("
-               << (*nodes)[node].location
-               << "). Check the source, the boundary values and "
-                  "'diffusion/Time step' (forward Euler bound "
-               << dt_bound
-               << "). The output written before this step is complete.";
-          message = text.str();
-        }
-      throw_on_any_rank(message, comm);
+      // The sources and boundary values were finite where they were
+      // evaluated (else their entry would be named): the solution diverged.
+      std::ostringstream advice;
+      if (stepping == "explicit")
+        advice << "The run is unstable: reduce 'diffusion/Time step' "
+                  "(forward Euler bound "
+               << dt_bound << ") or check the constants.";
+      else
+        advice << "Check the constants and the solver settings.";
+      finite_check.check_state(
+        *nodes,
+        {{c.begin(), c.locally_owned_size()}},
+        [&](const unsigned int i) {
+          return std::isfinite(c.local_element(op.vector_index(i)));
+        },
+        step_number,
+        time,
+        "The concentration",
+        advice.str(),
+        simulator.get_communicator());
+    }
+
+
+    template <int dim>
+    std::vector<IO::OutputName>
+    Diffusion<dim>::output_names(const Simulator<dim> &simulator) const
+    {
+      const auto &output = simulator.get_output();
+      auto        names  = output.output_names(true);
+      if (!history_file.empty())
+        names.push_back({section + "/History file",
+                         history_file,
+                         output.directory() + "/" + history_file,
+                         IO::OutputName::Kind::file,
+                         "the history file"});
+      return names;
     }
 
 

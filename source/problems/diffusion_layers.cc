@@ -89,6 +89,33 @@ namespace PeriDEAL
       is_prescribed.assign(c.locally_owned_size(), false);
       for (const auto i : prescribed_nodes)
         is_prescribed[op.vector_index(i)] = true;
+
+      // A body whose every node is prescribed has nothing to solve for:
+      // the run would only replay the boundary values.
+      const MPI_Comm comm = simulator.get_communicator();
+      const auto     free_after =
+        [&](const std::size_t n_prescribed) -> types::global_dof_index {
+        return Utilities::MPI::sum<types::global_dof_index>(set.n_owned() -
+                                                              n_prescribed,
+                                                            comm);
+      };
+      const bool dirichlet_only = free_after(dirichlet_nodes.size()) == 0;
+      AssertThrow(free_after(prescribed_nodes.size()) > 0,
+                  ExcInvalidInput(
+                    section + (dirichlet_only ? "/Dirichlet layer thickness" :
+                                                "/Flux layer thickness"),
+                    dirichlet_only ? dirichlet_thickness_text :
+                                     flux_thickness_text,
+                    std::string("every node lies in a ") +
+                      (dirichlet_only ? "Dirichlet layer" :
+                                        "Dirichlet layer or mirror flux "
+                                        "layer") +
+                      " (" +
+                      format_number((dirichlet_only ? dirichlet_thickness :
+                                                      flux_thickness) *
+                                    horizon) +
+                      " thick), so no value is left to compute; use a "
+                      "thinner layer, a smaller horizon or a larger body"));
     }
 
 
@@ -235,12 +262,20 @@ namespace PeriDEAL
       boundary_value->set_time(t);
       if (layer_values == "function")
         for (const auto i : dirichlet_nodes)
-          x.local_element(op.vector_index(i)) =
-            boundary_value->value((*nodes)[i].location);
+          {
+            const double g = boundary_value->value((*nodes)[i].location);
+            finite_check.value(g, boundary_value_entry, (*nodes)[i].location,
+                               true, t);
+            x.local_element(op.vector_index(i)) = g;
+          }
       else if (layer_values == "surface value")
         for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
-          x.local_element(op.vector_index(dirichlet_nodes[k])) =
-            boundary_value->value(surface_points[k]);
+          {
+            const double g = boundary_value->value(surface_points[k]);
+            finite_check.value(g, boundary_value_entry, surface_points[k],
+                               true, t);
+            x.local_element(op.vector_index(dirichlet_nodes[k])) = g;
+          }
       if (reflection_passes == 0)
         return;
       // Reflections read the free nodes (level 1) or layer nodes of a
@@ -257,10 +292,16 @@ namespace PeriDEAL
       const double inverse_diffusivity = 1. / kernel.diffusivity();
       for (unsigned int k = 0; k < reflections.size(); ++k)
         {
-          const auto &r       = reflections[k];
-          reflection_shift[k] = r.odd ? 2 * boundary_value->value(r.surface) :
-                                        r.distance * inverse_diffusivity *
-                                          boundary_flux->value(r.surface);
+          const auto  &r = reflections[k];
+          const double g = r.odd ? boundary_value->value(r.surface) :
+                                   boundary_flux->value(r.surface);
+          finite_check.value(g,
+                             r.odd ? boundary_value_entry : boundary_flux_entry,
+                             r.surface,
+                             true,
+                             t);
+          reflection_shift[k] =
+            r.odd ? 2 * g : r.distance * inverse_diffusivity * g;
         }
       for (unsigned int pass = 0; pass < reflection_passes; ++pass)
         {
@@ -286,8 +327,12 @@ namespace PeriDEAL
         {
           source->set_time(t);
           for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-            x.local_element(op.vector_index(i)) =
-              source->value((*nodes)[i].location);
+            {
+              const double value = source->value((*nodes)[i].location);
+              finite_check.value(value, source_entry, (*nodes)[i].location,
+                                 true, t);
+              x.local_element(op.vector_index(i)) = value;
+            }
         }
       if (with_flux && flux_values == "source")
         {
@@ -297,8 +342,12 @@ namespace PeriDEAL
           boundary_flux->set_time(t);
           const double inverse = 1. / (flux_thickness * horizon);
           for (const auto i : flux_nodes)
-            x.local_element(op.vector_index(i)) +=
-              inverse * boundary_flux->value((*nodes)[i].location);
+            {
+              const double q = boundary_flux->value((*nodes)[i].location);
+              finite_check.value(q, boundary_flux_entry, (*nodes)[i].location,
+                                 true, t);
+              x.local_element(op.vector_index(i)) += inverse * q;
+            }
         }
     }
 

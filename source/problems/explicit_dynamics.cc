@@ -6,6 +6,7 @@
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -75,10 +76,13 @@ namespace PeriDEAL
       prm.declare_entry("Load history",
                         "1",
                         Patterns::Anything(),
-                        "g(t): the body force and traction of 'Boundary "
-                        "conditions' (evaluated at t = 0) are multiplied by "
-                        "this function of t (muparser syntax), e.g. '1' for "
-                        "a step load, 't < 1e-6 ? t / 1e-6 : 1' for a ramp.");
+                        "g(t): an extra factor on the body force and "
+                        "traction of 'Boundary conditions', a function of t "
+                        "alone (muparser syntax), e.g. '1' (none), 't < "
+                        "1e-6 ? t / 1e-6 : 1' for a ramp. The functions of "
+                        "'Boundary conditions' are themselves evaluated at "
+                        "each step's time, so a load may as well use t "
+                        "there (variables 'x,y,t').");
       prm.enter_subsection("Initial displacement");
       Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
       prm.leave_subsection();
@@ -165,12 +169,26 @@ namespace PeriDEAL
                         "Continue from <Output/Directory>/checkpoint, "
                         "written by a run of the same input (on any number "
                         "of processes: bitwise the same result on the same "
-                        "number, to round-off on another).");
+                        "number, to round-off on another). The checkpoint "
+                        "records the entries that define its state (model "
+                        "and constants, horizon, mesh, partial volumes, "
+                        "failure, probes and crack tip) and a checksum: a "
+                        "change or a corrupt file is refused.");
+      prm.declare_entry(
+        "Overwrite checkpoint",
+        "false",
+        Patterns::Bool(),
+        "Let a run without 'Resume from checkpoint' replace a checkpoint in "
+        "'Output/Directory' that is further in time than the first one it "
+        "writes (refused otherwise, to keep a long run from being lost by "
+        "a forgotten 'Resume').");
       prm.declare_entry("Progress interval",
                         "5",
                         Patterns::Double(0),
                         "Print a progress line on rank 0 at most every this "
                         "many seconds of wall time (at energy rows).");
+      TimeLoop::declare_parameters(prm);
+      EnergyBalanceMonitor::declare_parameters(prm);
     }
 
 
@@ -201,10 +219,17 @@ namespace PeriDEAL
       checkpoint_minutes     = prm.get_double("Checkpoint interval");
       steps_per_run          = prm.get_integer("Steps per run");
       resume                 = prm.get_bool("Resume from checkpoint");
-      load_history           = std::make_unique<FunctionParser<1>>(1);
+      time_loop.parse_parameters(prm, "explicit dynamics", " s");
+      energy_monitor.parse_parameters(prm, "explicit dynamics");
+      load_history_entry = {"explicit dynamics/Load history",
+                            prm.get("Load history")};
+      load_history       = std::make_unique<FunctionParser<1>>(1);
       try
         {
-          load_history->initialize("x,t",
+          // FunctionParser<1> needs a space variable; one no user writes,
+          // so that 'x' (or any other name but t) is an unknown variable
+          // instead of a silent 0.
+          load_history->initialize("perideal_unused_coordinate,t",
                                    prm.get("Load history"),
                                    std::map<std::string, double>(),
                                    true);
@@ -216,18 +241,35 @@ namespace PeriDEAL
           AssertThrow(false,
                       ExcInvalidInput("explicit dynamics/Load history",
                                       prm.get("Load history"),
-                                      "give a function of t in muparser "
-                                      "syntax"));
+                                      "give a function of t alone in "
+                                      "muparser syntax (t is its only "
+                                      "variable; a load that varies in space "
+                                      "belongs in 'Boundary conditions')"));
         }
-      for (const auto &[name, function] :
-           {std::make_pair("Initial displacement", &initial_displacement),
-            std::make_pair("Initial velocity", &initial_velocity)})
-        {
-          prm.enter_subsection(name);
-          *function = std::make_unique<Functions::ParsedFunction<dim>>(dim);
-          (*function)->parse_parameters(prm);
-          prm.leave_subsection();
-        }
+      initial_displacement =
+        parse_function<dim>(prm,
+                            "Initial displacement",
+                            "explicit dynamics",
+                            dim,
+                            &initial_displacement_entry);
+      initial_velocity = parse_function<dim>(prm,
+                                             "Initial velocity",
+                                             "explicit dynamics",
+                                             dim,
+                                             &initial_velocity_entry);
+      // The prescribed displacement or velocity is parsed by the boundary
+      // conditions; its expression, for messages about its values, lives
+      // outside this subsection (which PluginRegistry::create() entered
+      // from the top level).
+      prm.leave_subsection();
+      prm.enter_subsection("Boundary conditions");
+      prm.enter_subsection("Dirichlet displacement");
+      dirichlet_entry = {"Boundary conditions/Dirichlet displacement/Function "
+                         "expression",
+                         prm.get("Function expression")};
+      prm.leave_subsection();
+      prm.leave_subsection();
+      prm.enter_subsection("explicit dynamics");
       pre_crack_text = prm.get("Pre-cracks");
       pre_cracks.parse(pre_crack_text, "explicit dynamics/Pre-cracks");
       no_fail_text = prm.get("No-fail boxes");
@@ -244,9 +286,11 @@ namespace PeriDEAL
                                   "give a thickness > 0 (in horizons), for "
                                   "instance 1"));
       crack_tip.parse_parameters(prm, "explicit dynamics");
+      probe_text = prm.get("Probe points");
       probe_points =
-        Discretization::parse_points<dim>(prm.get("Probe points"),
+        Discretization::parse_points<dim>(probe_text,
                                           "explicit dynamics/Probe points");
+      parse_checkpoint_parameters(prm);
     }
 
 
@@ -269,15 +313,68 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    ExplicitDynamics<dim>::unused_entries(const Simulator<dim> &simulator) const
+    {
+      const std::string        section = "explicit dynamics/";
+      const auto              &bc      = simulator.get_boundary_conditions();
+      std::vector<UnusedEntry> unused  = bc.unused_entries();
+      unused.push_back({"Analytical solution/",
+                        "explicit dynamics compares with no analytical "
+                        "solution (it records energies, 'Probe points' and "
+                        "the crack tip); remove the subsection 'Analytical "
+                        "solution'"});
+      if (given_time_step > 0)
+        unused.push_back({section + "Safety factor",
+                          "'Time step' is given, so no fraction of the "
+                          "stability bound is taken; set 'Time step = 0' "
+                          "to use it, or remove the entry"});
+      else
+        unused.push_back({section + "Allow unstable time step",
+                          "with 'Time step = 0' the step is 'Safety factor' "
+                          "(at most 1) times the stability bound, never "
+                          "above it; remove the entry"});
+      if (no_fail_ids.empty())
+        unused.push_back({section + "No-fail layer thickness",
+                          "it is the thickness of the layers along 'No-fail "
+                          "boundary ids', and none are given; give them, or "
+                          "remove the entry"});
+      if (!crack_tip.enabled())
+        for (const char *entry : {"Crack tip region", "Crack tip damage"})
+          unused.push_back({section + entry,
+                            "no 'Crack tip origin' is given, so no crack tip "
+                            "is tracked; give the origin too, or remove the "
+                            "entry"});
+      if (!bc.has_load())
+        unused.push_back({section + "Load history",
+                          "'Boundary conditions' gives no body force and no "
+                          "'Traction boundary ids', so there is no load to "
+                          "scale; give the load, or remove the entry"});
+      if (!bc.has_dirichlet())
+        unused.push_back({section + "Prescribed quantity",
+                          "neither 'Boundary conditions/Dirichlet boundary "
+                          "ids' nor 'Dirichlet boxes' is given, so nothing "
+                          "is prescribed; give them, or remove the entry"});
+      return unused;
+    }
+
+
+    template <int dim>
     void
     ExplicitDynamics<dim>::run(Simulator<dim> &simulator)
     {
       setup(simulator);
       choose_time_step(simulator);
+      energy_monitor.reset();
       if (resume)
-        read_checkpoint(simulator);
+        {
+          read_checkpoint(simulator);
+          for (const auto &row : energy_rows)
+            energy_monitor.observe(row[2], row[3], row[4]);
+        }
       else
         {
+          check_checkpoint_overwrite(simulator);
           initialize(simulator);
           record_energies(simulator);
           write_output(simulator);
@@ -309,8 +406,7 @@ namespace PeriDEAL
             }
           const bool by_steps =
             output_every_steps > 0 && step_number % output_every_steps == 0;
-          const bool by_time =
-            output_interval > 0 && time >= next_output_time - 1e-12 * dt;
+          const bool by_time = time_loop.output_due(time, dt, next_output_time);
           if (last || by_steps || by_time)
             {
               TimerOutput::Scope out(simulator.get_timer(), "output");
@@ -400,16 +496,27 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         h = std::max(h, std::pow(nodes[i].volume(), 1. / dim));
       h = Utilities::MPI::max(h, comm);
-      const std::size_t n_cut =
+      std::vector<std::size_t> cut_per_crack;
+      const std::size_t        n_cut =
         pre_cracks.break_bonds(nodes,
                                lists,
                                bond_state,
-                               horizon + 2 * std::sqrt(dim) * h);
+                               horizon + 2 * std::sqrt(dim) * h,
+                               &cut_per_crack);
       AssertThrow(pre_cracks.empty() || n_cut > 0,
                   ExcInvalidInput("explicit dynamics/Pre-cracks",
                                   pre_crack_text,
                                   "no bond crosses the pre-cracks: they lie "
                                   "outside the body"));
+      for (std::size_t k = 0; k < cut_per_crack.size(); ++k)
+        AssertThrow(cut_per_crack[k] > 0,
+                    ExcInvalidInput("explicit dynamics/Pre-cracks",
+                                    pre_crack_text,
+                                    "pre-crack " + std::to_string(k + 1) +
+                                      " crosses no bond (that another "
+                                      "pre-crack does not cross already): it "
+                                      "lies outside the body; move it onto "
+                                      "the body, or remove it"));
       bond_operator.update_bond_state();
       broken_bonds = n_cut;
 
@@ -441,18 +548,52 @@ namespace PeriDEAL
       TrilinosWrappers::MPI::Vector nodal_load(
         simulator.get_dof_handler().locally_owned_dofs(),
         comm);
-      simulator.get_boundary_conditions().add_load(simulator.get_dof_handler(),
-                                                   nodes,
-                                                   constraints,
-                                                   nodal_load);
+      // Loads that depend on t: the constant part once, the others at
+      // their sites at each step (update_load()).
+      auto &conditions    = simulator.get_boundary_conditions();
+      time_dependent_load = conditions.load_depends_on_time();
+      load_sites.clear();
+      load_site_indices.clear();
+      if (time_dependent_load)
+        load_sites = conditions.add_constant_load(simulator.get_dof_handler(),
+                                                  nodes,
+                                                  constraints,
+                                                  nodal_load);
+      else
+        conditions.add_load(simulator.get_dof_handler(),
+                            nodes,
+                            constraints,
+                            nodal_load);
       for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
         load[dof] = nodal_load[dof];
+      if (time_dependent_load)
+        constant_load = load;
+      for (const auto &site : load_sites)
+        {
+          std::array<unsigned int, dim> indices;
+          for (unsigned int c = 0; c < dim; ++c)
+            indices[c] = site.dofs[c] == numbers::invalid_dof_index ?
+                           numbers::invalid_unsigned_int :
+                           partitioner->global_to_local(site.dofs[c]);
+          load_site_indices.push_back(indices);
+        }
+      load_time = std::numeric_limits<double>::quiet_NaN();
       // The update loops blend with a 0/1 mask (they vectorise), and skip
       // the work of the loads when there are none anywhere.
       free_dof.resize(u.locally_owned_size());
       for (unsigned int k = 0; k < free_dof.size(); ++k)
         free_dof[k] = is_prescribed[k] ? 0. : 1.;
-      with_load = Utilities::MPI::max(load.linfty_norm(), comm) > 0;
+      with_load = time_dependent_load ||
+                  Utilities::MPI::max(load.linfty_norm(), comm) > 0;
+      prescribed_values.clear();
+
+      // Points that would silently stand for the nearest node: on the
+      // body, or an error.
+      Discretization::check_points_in_body(nodes,
+                                           probe_points,
+                                           "explicit dynamics/Probe points",
+                                           probe_text);
+      crack_tip.check_on_body(nodes, "explicit dynamics");
 
       // Probes: the nearest node over all processes (ties: lowest DoF).
       probe_nodes.assign(probe_points.size(), numbers::invalid_unsigned_int);
@@ -498,7 +639,67 @@ namespace PeriDEAL
         << Utilities::MPI::sum(prescribed.size(), comm) << " prescribed DoFs, "
         << MultithreadInfo::n_threads() << " thread(s) per process"
         << std::defaultfloat << std::endl;
+      if (time_dependent_load)
+        simulator.get_pcout()
+          << "           the body force or traction depends on t: evaluated "
+             "at every step's time at "
+          << Utilities::MPI::sum(load_sites.size(), comm) << " load sites"
+          << std::endl;
     }
+
+
+    namespace
+    {
+      /**
+       * Stop when the stable step 2 / sqrt(lambda) is not a finite positive
+       * number. The simulator refuses a run without bonds, so Gershgorin's
+       * bound lambda of M^{-1} K has left the range of doubles; it is the
+       * stiffness over the density: name the one that is out of range.
+       * Collective (the same lambda on every process).
+       */
+      template <int dim>
+      void
+      check_stability_bound(const Simulator<dim>               &simulator,
+                            const Operators::BondOperator<dim> &op,
+                            const double                        lambda)
+      {
+        const double bound = 2 / std::sqrt(lambda);
+        if (std::isfinite(bound) && bound > 0)
+          return;
+        const double stiffness = op.gershgorin_eigenvalue_bound(1.);
+        const double rho       = simulator.get_model().density();
+        const std::string why =
+          "the stable time step 2 / sqrt(lambda) is " + format_number(bound) +
+          ": Gershgorin's bound lambda of M^{-1} K, the bond stiffness (" +
+          format_number(stiffness) + " per unit density) over the density, "
+          "is " +
+          format_number(lambda) +
+          ", out of the range of double precision numbers (about 1e-308 to "
+          "1e308); give ";
+        const bool by_stiffness = !std::isfinite(stiffness) || stiffness <= 0 ||
+                                  !std::isfinite(2 / std::sqrt(stiffness));
+        if (by_stiffness)
+          {
+            const auto [entry, value] = simulator.get_stiffness_entry();
+            AssertThrow(false,
+                        ExcInvalidInput(entry,
+                                        value,
+                                        why +
+                                          "the modulus of a real material, "
+                                          "about 1e3 to 1e12 Pa (or of order "
+                                          "1 in nondimensional units)"));
+          }
+        const std::string entry = simulator.get_stiffness_entry().first;
+        AssertThrow(false,
+                    ExcInvalidInput(entry.substr(0, entry.rfind('/') + 1) +
+                                      "Density",
+                                    format_number(rho),
+                                    why +
+                                      "the density of a real material, about "
+                                      "1 to 2e4 kg/m^3 (or of order 1 in "
+                                      "nondimensional units)"));
+      }
+    } // namespace
 
 
     template <int dim>
@@ -510,9 +711,7 @@ namespace PeriDEAL
       const double power  = bond_operator.estimate_largest_eigenvalue(rho, 60);
       dt_bound            = 2 / std::sqrt(lambda);
       dt_estimate         = 2 / std::sqrt(power);
-      AssertThrow(std::isfinite(dt_bound) && dt_bound > 0,
-                  ExcMessage("The stability bound of the time step is not "
-                             "finite: the operator has no bonds?"));
+      check_stability_bound(simulator, bond_operator, lambda);
       if (given_time_step > 0)
         AssertThrow(
           given_time_step <= dt_bound || allow_unstable,
@@ -525,11 +724,13 @@ namespace PeriDEAL
                             " s); give a smaller step, 0 for the bound times "
                             "'Safety factor', or set 'Allow unstable time "
                             "step = true'"));
-      const double wanted =
-        given_time_step > 0 ? given_time_step : safety_factor * dt_bound;
-      n_steps = static_cast<unsigned int>(std::ceil(end_time / wanted - 1e-9));
-      n_steps = std::max(n_steps, 1u);
-      dt      = end_time / n_steps;
+      StabilityBound bound;
+      bound.value       = dt_bound;
+      bound.description = "the stability bound " + to_string(dt_bound) + " s";
+      const auto plan   = time_loop.plan(bound);
+      n_steps           = plan.n_steps;
+      dt                = plan.dt;
+      time_loop.check_output_interval(dt);
       next_output_time = output_interval;
       simulator.get_pcout()
         << "           time step " << to_string(dt) << " s (" << n_steps
@@ -551,23 +752,32 @@ namespace PeriDEAL
         {
           initial_displacement->vector_value(nodes[i].location, value);
           for (unsigned int c = 0; c < dim; ++c)
-            u[nodes[i].dofs[c]] = value[c];
+            {
+              finite_check.value(value[c],
+                                 initial_displacement_entry,
+                                 nodes[i].location);
+              u[nodes[i].dofs[c]] = value[c];
+            }
           initial_velocity->vector_value(nodes[i].location, value);
           for (unsigned int c = 0; c < dim; ++c)
-            v[nodes[i].dofs[c]] = value[c];
+            {
+              finite_check.value(value[c],
+                                 initial_velocity_entry,
+                                 nodes[i].location);
+              v[nodes[i].dofs[c]] = value[c];
+            }
         }
       time = 0;
       simulator.get_boundary_conditions().set_time(0);
-      if (!prescribe_velocity)
-        for (const auto &p : prescribed)
-          u.local_element(p.index) =
-            simulator.get_boundary_conditions().dirichlet_value(
-              nodes[p.node].location)[p.component];
-      else
-        for (const auto &p : prescribed)
-          v.local_element(p.index) =
-            simulator.get_boundary_conditions().dirichlet_value(
-              nodes[p.node].location)[p.component];
+      for (const auto &p : prescribed)
+        {
+          const double g = simulator.get_boundary_conditions().dirichlet_value(
+            nodes[p.node].location)[p.component];
+          finite_check.value(g, dirichlet_entry, nodes[p.node].location, true);
+          (prescribe_velocity ? v : u).local_element(p.index) = g;
+        }
+      // Before the first force pass: it would only spread the bad values.
+      finite_check.throw_pending(simulator.get_communicator());
       u.update_ghost_values();
       // run() records the energies of the initial state next.
       compute_acceleration(simulator, true);
@@ -599,12 +809,13 @@ namespace PeriDEAL
       else
         {
           bond_operator.apply(u, force);
-          elastic_energy_step = numbers::invalid_unsigned_int;
+          elastic_energy_step = no_step;
         }
       broken_bonds += bond_operator.commit_broken_bonds(bond_state);
+      update_load(simulator, time);
       load_history->set_time(time);
       load_factor = load_history->value(Point<1>());
-      (void)simulator;
+      finite_check.scalar(load_factor, load_history_entry, time, step_number);
       const unsigned int n = u.locally_owned_size();
       const double *pf = force.begin(), *pl = load.begin(), *pm = mass.begin(),
                    *free = free_dof.data();
@@ -619,8 +830,52 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    ExplicitDynamics<dim>::update_load(Simulator<dim> &simulator,
+                                       const double    t)
+    {
+      if (!time_dependent_load || t == load_time)
+        return;
+      auto &conditions = simulator.get_boundary_conditions();
+      conditions.set_time(t);
+      for (const auto &indices : load_site_indices)
+        for (const unsigned int k : indices)
+          if (k != numbers::invalid_unsigned_int)
+            load.local_element(k) = constant_load.local_element(k);
+      std::string non_finite;
+      for (std::size_t s = 0; s < load_sites.size(); ++s)
+        {
+          const Tensor<1, dim> f = conditions.load_at(load_sites[s]);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const unsigned int k = load_site_indices[s][c];
+              if (k != numbers::invalid_unsigned_int)
+                load.local_element(k) += f[c];
+              if (!std::isfinite(f[c]) && non_finite.empty())
+                {
+                  std::ostringstream text;
+                  text << "The load is not finite at t = " << t
+                       << " s: component " << c << " of '"
+                       << conditions.load_entry(load_sites[s])
+                       << "' is " << f[c] << " at (" << load_sites[s].point
+                       << "); give an expression that is finite on the "
+                          "whole body and its loaded faces for every t up "
+                          "to 'End time'. The output written before is "
+                          "complete.";
+                  non_finite = text.str();
+                }
+            }
+        }
+      throw_on_any_rank(non_finite, simulator.get_communicator());
+      load_time = t;
+    }
+
+
+    template <int dim>
+    void
     ExplicitDynamics<dim>::step(Simulator<dim> &simulator)
     {
+      // The load at the current time (after a resume: not yet evaluated).
+      update_load(simulator, time);
       const unsigned int n        = u.locally_owned_size();
       const double       old_load = load_factor;
       double             work     = 0;
@@ -656,8 +911,12 @@ namespace PeriDEAL
       // record it (the same test as there).
       compute_acceleration(simulator, records_energies());
       if (with_load)
-        for (unsigned int k = 0; k < n; ++k)
-          work += 0.5 * load_factor * pl[k] * dt * pv[k] * free[k];
+        {
+          // The load at the new time (update_load() may have rewritten it).
+          const double *new_load = load.begin();
+          for (unsigned int k = 0; k < n; ++k)
+            work += 0.5 * load_factor * new_load[k] * dt * pv[k] * free[k];
+        }
       for (unsigned int k = 0; k < n; ++k)
         {
           const double next = pv[k] + 0.5 * dt * pa[k];
@@ -686,6 +945,11 @@ namespace PeriDEAL
       auto       &conditions = simulator.get_boundary_conditions();
       const auto &nodes      = simulator.get_nodes();
       const auto  values_at  = [&](const double when) {
+        // Values that do not depend on t are evaluated once.
+        if (!conditions.dirichlet_depends_on_time() &&
+            prescribed_values.size() == prescribed.size() &&
+            !prescribed.empty())
+          return prescribed_values;
         conditions.set_time(when);
         std::vector<double> values(prescribed.size());
         unsigned int        node = numbers::invalid_unsigned_int;
@@ -698,7 +962,14 @@ namespace PeriDEAL
                 g    = conditions.dirichlet_value(nodes[node].location);
               }
             values[q] = g[prescribed[q].component];
+            finite_check.value(values[q],
+                               dirichlet_entry,
+                               nodes[node].location,
+                               true,
+                               when);
           }
+        if (!conditions.dirichlet_depends_on_time())
+          prescribed_values = values;
         return values;
       };
       if (prescribe_velocity)
@@ -782,6 +1053,30 @@ namespace PeriDEAL
                                     tip.begin(),
                                     tip.end());
         }
+      // Velocity Verlet conserves K + E - W - dt^2/8 sum m |a|^2 (exactly
+      // for linear forces, and for any load history on a free body), not
+      // K + E - W: the monitor judges that form, so that the start of a
+      // ramp, where the whole kinetic energy is this term, is not taken
+      // for energy made. That form is an energy (positive) only for a
+      // stable step: above the bound it falls as the run blows up, so there
+      // the plain balance is judged.
+      double verlet_term = 0;
+      if (dt <= dt_bound)
+        {
+          for (unsigned int k = 0; k < a.locally_owned_size(); ++k)
+            verlet_term += mass.local_element(k) * a.local_element(k) *
+                           a.local_element(k);
+          verlet_term = dt * dt / 8 * Utilities::MPI::sum(verlet_term, comm);
+        }
+      energy_monitor.check(kinetic,
+                           elastic,
+                           external_work,
+                           verlet_term,
+                           step_number,
+                           time,
+                           dt_bound,
+                           comm,
+                           simulator.get_pcout());
     }
 
 
@@ -816,9 +1111,7 @@ namespace PeriDEAL
     {
       const auto    &nodes = simulator.get_nodes();
       const MPI_Comm comm  = simulator.get_communicator();
-      if (output_interval > 0)
-        while (next_output_time <= time + 1e-12 * dt)
-          next_output_time += output_interval;
+      time_loop.advance_output_time(next_output_time, time, dt);
       const auto &output = simulator.get_output();
       if (output.enabled())
         {
@@ -894,56 +1187,51 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    ExplicitDynamics<dim>::check_finite(Simulator<dim> &simulator) const
+    ExplicitDynamics<dim>::check_finite(Simulator<dim> &simulator)
     {
-      const auto    &nodes = simulator.get_nodes();
-      const MPI_Comm comm  = simulator.get_communicator();
-      // A fast test first: x * 0 is 0 for a finite x and NaN otherwise, so
-      // the sum is 0 exactly when every owned value is finite (one
-      // vectorised pass instead of a look-up per DoF).
-      // (Four partial sums, so that the loop is not one chain of adds.)
-      double             partial[4] = {0, 0, 0, 0};
-      const double      *pu = u.begin(), *pv = v.begin();
-      const unsigned int n_local = u.locally_owned_size();
-      unsigned int       k       = 0;
-      for (; k + 4 <= n_local; k += 4)
-        for (unsigned int q = 0; q < 4; ++q)
-          partial[q] += pu[k + q] * 0. + pv[k + q] * 0.;
-      for (; k < n_local; ++k)
-        partial[0] += pu[k] * 0. + pv[k] * 0.;
-      const double probe = partial[0] + partial[1] + partial[2] + partial[3];
-      // The first owned node (lowest DoF) with a value that is not finite.
-      types::global_dof_index bad      = numbers::invalid_dof_index;
-      unsigned int            bad_node = 0;
-      for (unsigned int i = 0; probe != 0. && i < nodes.n_owned() &&
-                               bad == numbers::invalid_dof_index;
-           ++i)
-        for (unsigned int c = 0; c < dim; ++c)
-          if (!std::isfinite(u[nodes[i].dofs[c]]) ||
-              !std::isfinite(v[nodes[i].dofs[c]]))
-            {
-              bad      = nodes[i].dofs[0];
-              bad_node = i;
-              break;
-            }
-      const auto first = Utilities::MPI::min(bad, comm);
-      if (first == numbers::invalid_dof_index)
-        return;
-      std::string message;
-      if (bad == first)
-        {
-          std::ostringstream s;
-          s << "The displacement or velocity is not finite at step "
-            << step_number << " (t = " << time << " s) at the node at ("
-            << nodes[bad_node].location
-            << "). The run is unstable: reduce 'explicit dynamics/Time "
-               "step' (stability bound "
-            << dt_bound
-            << " s) or check the loads and material constants. The output "
-               "written before this step is complete.";
-          message = s.str();
-        }
-      throw_on_any_rank(message, comm);
+      const auto &nodes = simulator.get_nodes();
+      finite_check.check_state(
+        nodes,
+        {{u.begin(), u.locally_owned_size()},
+         {v.begin(), v.locally_owned_size()}},
+        [&](const unsigned int i) {
+          for (unsigned int c = 0; c < dim; ++c)
+            if (!std::isfinite(u[nodes[i].dofs[c]]) ||
+                !std::isfinite(v[nodes[i].dofs[c]]))
+              return false;
+          return true;
+        },
+        step_number,
+        time,
+        "The displacement or velocity",
+        "The run is unstable: reduce 'explicit dynamics/Time step' (stability "
+        "bound " +
+          to_string(dt_bound) +
+          " s) or check the loads and material constants.",
+        simulator.get_communicator());
+    }
+
+
+    template <int dim>
+    std::vector<IO::OutputName>
+    ExplicitDynamics<dim>::output_names(const Simulator<dim> &simulator) const
+    {
+      const auto &output = simulator.get_output();
+      auto        names  = output.output_names(true);
+      for (const std::string suffix : {"", ".new", ".old"})
+        names.push_back({"Output/Directory",
+                         output.directory(),
+                         output.directory() + "/checkpoint" + suffix,
+                         IO::OutputName::Kind::directory,
+                         "the checkpoint directory 'checkpoint" + suffix +
+                           "'"});
+      if (!energy_file.empty())
+        names.push_back({"explicit dynamics/Energy file",
+                         energy_file,
+                         output.directory() + "/" + energy_file,
+                         IO::OutputName::Kind::file,
+                         "the energy file"});
+      return names;
     }
 
 

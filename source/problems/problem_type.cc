@@ -1,5 +1,6 @@
 #include <perideal/models/model.h>
 #include <perideal/problems/problem_type.h>
+#include <perideal/problems/simulator.h>
 
 namespace PeriDEAL
 {
@@ -9,6 +10,22 @@ namespace PeriDEAL
     void
     ProblemType<dim>::check_input(const Simulator<dim> &) const
     {}
+
+
+    template <int dim>
+    std::vector<IO::OutputName>
+    ProblemType<dim>::output_names(const Simulator<dim> &simulator) const
+    {
+      return simulator.get_output().output_names(false);
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    ProblemType<dim>::unused_entries(const Simulator<dim> &) const
+    {
+      return {};
+    }
 
 
     template <int dim>

@@ -11,6 +11,7 @@
 #include <perideal/problems/quasi_static.h>
 #include <perideal/problems/simulator_context.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -27,14 +28,32 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    QuasiStatic<dim>::declare_parameters(ParameterHandler &)
-    {}
+    QuasiStatic<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry(
+        "Time",
+        "1",
+        Patterns::Double(),
+        "The (pseudo-)time t at which the functions of 'Boundary "
+        "conditions' (Dirichlet displacement, Body force, Traction, "
+        "Boundary stress) and 'Analytical solution' are evaluated: the "
+        "problem is the equilibrium under the loads at this instant. As in "
+        "the static steps of finite-element codes, the default 1 is the end "
+        "of a unit load ramp, so a load 'p*t' acts in full; functions that "
+        "do not use t are the same at any time.");
+    }
 
 
     template <int dim>
     void
-    QuasiStatic<dim>::parse_parameters(ParameterHandler &)
-    {}
+    QuasiStatic<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      load_time = prm.get_double("Time");
+      AssertThrow(std::isfinite(load_time),
+                  ExcInvalidInput("quasi-static/Time",
+                                  prm.get("Time"),
+                                  "give a finite time"));
+    }
 
 
     template <int dim>
@@ -56,9 +75,42 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<UnusedEntry>
+    QuasiStatic<dim>::unused_entries(const Simulator<dim> &simulator) const
+    {
+      std::vector<UnusedEntry> unused =
+        simulator.get_boundary_conditions().unused_entries();
+      for (const char *entry :
+           {"Critical stretch", "Fracture energy", "Density"})
+        unused.push_back({std::string("Material model/*/") + entry,
+                          "the quasi-static problem is linear and static: it "
+                          "breaks no bonds and has no inertia (the entry "
+                          "acts in 'Problem type = explicit dynamics'); "
+                          "remove it"});
+      if (simulator.get_analytical_solution() == nullptr)
+        unused.push_back({"Analytical solution/Displacement/",
+                          "'Analytical solution/Compare with analytical "
+                          "solution' is false; set it to true to compare, "
+                          "or remove the entry"});
+      return unused;
+    }
+
+
+    template <int dim>
     void
     QuasiStatic<dim>::run(Simulator<dim> &simulator)
     {
+      // Every function of the set-up at the one time of this problem.
+      simulator.set_time(load_time);
+      simulator.get_pcout()
+        << "           boundary conditions evaluated at t = "
+        << format_number(load_time) << " ('quasi-static/Time')"
+        << (simulator.get_boundary_conditions().load_depends_on_time() ||
+                simulator.get_boundary_conditions()
+                  .dirichlet_depends_on_time() ?
+              "; they depend on t" :
+              "; they do not depend on t")
+        << std::endl;
       system = simulator.get_boundary_treatment().make_system(simulator);
       system->setup(simulator);
       system->solve_linear(simulator, displacement);

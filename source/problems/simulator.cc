@@ -16,10 +16,12 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
+#include <perideal/base/shared_libraries.h>
 #include <perideal/models/diffusion_model.h>
 #include <perideal/problems/simulator.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -130,6 +132,10 @@ namespace PeriDEAL
     void
     Simulator<dim>::declare_parameters(ParameterHandler &prm)
     {
+      // The driver reads it and loads the libraries in a first pass
+      // (load_shared_libraries()); declared here so that the full parse
+      // accepts it.
+      declare_shared_library_parameters(prm);
       prm.declare_entry("Dimension",
                         "3",
                         Patterns::Integer(1, 3),
@@ -489,6 +495,32 @@ namespace PeriDEAL
       prm.leave_subsection();
 
       problem->check_input(*this);
+      check_unused_entries(prm);
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::check_unused_entries(const ParameterHandler &prm) const
+    {
+      std::vector<UnusedEntry> unused = problem->unused_entries(*this);
+      if (!problem->uses_material_model())
+        unused.push_back({"Material model/",
+                          "the problem type '" + problem_name +
+                            "' uses no elastic material model; remove the "
+                            "subsection 'Material model'"});
+      else if (model != nullptr)
+        for (const auto &rule : model->unused_entries())
+          unused.push_back(
+            {"Material model/" + model_name + "/" + rule.pattern, rule.why});
+      if (!problem->uses_linear_solver())
+        unused.push_back({"Linear solver/",
+                          "the problem type '" + problem_name +
+                            "' solves no linear system with it; remove the "
+                            "subsection 'Linear solver'"});
+      ParameterHandler defaults;
+      declare_parameters(defaults);
+      PeriDEAL::check_unused_entries(changed_entries(prm, defaults), unused);
     }
 
 
@@ -783,6 +815,7 @@ namespace PeriDEAL
     Simulator<dim>::run()
     {
       wall_clock.restart();
+      check_output_names();
       // Output paths are checked before any work, on every process that
       // writes, and the verdict is shared: a failure on one process must
       // not leave the others waiting.
@@ -829,6 +862,7 @@ namespace PeriDEAL
                   std::string())
             << std::endl;
       make_mesh();
+      check_material_scale();
       setup_nodes();
       problem->run(*this);
 
@@ -846,6 +880,95 @@ namespace PeriDEAL
 
       write_summary_file();
       return summary;
+    }
+
+
+    template <int dim>
+    std::pair<std::string, std::string>
+    Simulator<dim>::get_stiffness_entry() const
+    {
+      AssertThrow(model != nullptr, ExcInternalError());
+      const auto entry = model->stiffness_entry();
+      if (entry.first.empty())
+        return {"Material model/Model", model_name};
+      return {"Material model/" + model_name + "/" + entry.first,
+              entry.second};
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::check_material_scale() const
+    {
+      if (model == nullptr || !problem->uses_material_model() ||
+          model->stiffness_entry().first.empty())
+        return;
+      // The weighted volume m of a full ball, S_{d-1} int_0^delta omega r^{d+1}
+      // dr (midpoint rule), the coefficients of the shortest and the longest
+      // bond, and a row sum of the stiffness: the same on every process.
+      const double sphere = dim == 1 ? 2. :
+                            dim == 2 ? 2 * numbers::PI :
+                                       4 * numbers::PI;
+      const unsigned int n_r = 256;
+      double             m   = 0;
+      for (unsigned int k = 0; k < n_r; ++k)
+        {
+          const double r = (k + 0.5) / n_r * horizon;
+          m += sphere * model->influence(r, horizon) * std::pow(r, dim + 1) *
+               horizon / n_r;
+        }
+      const double volume = sphere / dim * std::pow(horizon, dim);
+      bool         finite = std::isfinite(model->bulk_modulus()) &&
+                    std::isfinite(model->shear_modulus()) &&
+                    std::isfinite(m) && m > 0;
+      for (const double r : {h, horizon})
+        {
+          const double a = model->dilatation_coefficient(m, r, horizon);
+          const double b = model->extension_coefficient(m, r, horizon);
+          const double row =
+            (std::abs(a) * dim * horizon / m * volume + std::abs(b)) * volume;
+          finite = finite && std::isfinite(a) && std::isfinite(b) &&
+                   std::isfinite(row);
+        }
+      const auto [entry, value] = get_stiffness_entry();
+      AssertThrow(finite,
+                  ExcInvalidInput(
+                    entry,
+                    value,
+                    "with the horizon " + to_string(horizon) +
+                      " the bond stiffness of the model (the modulus over a "
+                      "power of the horizon) overflows the range of double "
+                      "precision numbers (about 1e308); give the modulus of "
+                      "a real material, about 1e3 to 1e12 Pa (or of order 1 "
+                      "in nondimensional units)"));
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::check_output_names() const
+    {
+      using Kind = IO::OutputName::Kind;
+      std::vector<IO::OutputName> names;
+      if (mesh_kind == "file")
+        names.push_back(
+          {"Geometry/Mesh file", mesh_file, mesh_file, Kind::input, "the mesh"});
+      for (auto &name : problem->output_names(*this))
+        names.push_back(std::move(name));
+      if (!summary_file.empty())
+        names.push_back({"Output/Summary file",
+                         summary_file,
+                         summary_file,
+                         Kind::file,
+                         "the summary file"});
+      if (!node_data_file.empty())
+        names.push_back({"Output/Node data file",
+                         node_data_file,
+                         node_data_file,
+                         Kind::file,
+                         "the node data file"});
+      check_on_all_ranks([&]() { IO::check_output_names(names); },
+                         communicator);
     }
 
 
@@ -1066,6 +1189,16 @@ namespace PeriDEAL
     Simulator<dim>::get_analytical_solution() const
     {
       return compare_with_analytical ? analytical_solution.get() : nullptr;
+    }
+
+
+    template <int dim>
+    void
+    Simulator<dim>::set_time(const double t)
+    {
+      boundary_conditions.set_time(t);
+      if (analytical_solution != nullptr)
+        analytical_solution->set_time(t);
     }
 
 

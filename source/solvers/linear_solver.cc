@@ -117,7 +117,9 @@ namespace PeriDEAL
         throw_on_any_rank(
           fits ?
             std::string() :
-            "The direct solver (MUMPS) would need an estimated " +
+            "Invalid value 'direct' for the parameter 'Linear "
+            "solver/Method': the direct solver (MUMPS) would need an "
+            "estimated " +
               format_number(total_needed) + " MB for its factors (" + size +
               "), " + format_number(needed) + " MB on a process that has " +
               format_number(available) + " MB available; " + fix + ".",
@@ -126,6 +128,54 @@ namespace PeriDEAL
         throw_on_any_rank(error_of(mumps.Solve()), comm);
       }
     } // namespace
+
+
+    namespace internal
+    {
+      void
+      check_finite_rhs(const double rhs_norm, const std::string &method)
+      {
+        AssertThrow(std::isfinite(rhs_norm),
+                    ExcMessage(
+                      "The right-hand side of the linear system (" + method +
+                      ") holds non-finite values (NaN or Inf), although the "
+                      "loads and prescribed displacements are finite where "
+                      "they are evaluated: the Dirichlet values lifted "
+                      "through the stiffness overflow the range of double "
+                      "precision numbers (about 1e308). Check the elastic "
+                      "constants of 'Material model' and the magnitudes of "
+                      "'Boundary conditions/Dirichlet displacement', 'Body "
+                      "force' and 'Traction'."));
+      }
+
+
+      void
+      check_solve_result(const bool         converged,
+                         const double       last_residual,
+                         const double       relative_residual,
+                         const std::string &method)
+      {
+        AssertThrow(converged,
+                    ExcMessage("The linear solver (" + method +
+                               ") stopped at the residual " +
+                               format_number(last_residual) +
+                               " without converging, from a finite "
+                               "right-hand side: the system overflows the "
+                               "range of double precision numbers or is "
+                               "singular. Check the elastic constants of "
+                               "'Material model' and that the Dirichlet "
+                               "conditions fix every rigid motion."));
+        AssertThrow(std::isfinite(relative_residual),
+                    ExcMessage("The linear solve (" + method +
+                               ") produced non-finite values (NaN or Inf) "
+                               "from a finite right-hand side: the system is "
+                               "singular or overflows the range of double "
+                               "precision numbers. Check that the Dirichlet "
+                               "conditions fix every rigid motion (every "
+                               "displacement component, and rotations), and "
+                               "the elastic constants of 'Material model'."));
+      }
+    } // namespace internal
 
 
     void
@@ -292,6 +342,7 @@ namespace PeriDEAL
       Timer        timer;
       SolverReport report;
       const double rhs_norm = rhs.l2_norm();
+      internal::check_finite_rhs(rhs_norm, method_name);
       if (rhs_norm == 0)
         {
           // A = 0 right-hand side: the solution is zero, and a relative
@@ -452,12 +503,10 @@ namespace PeriDEAL
       report.relative_residual =
         matrix.residual(residual, solution, rhs) / rhs_norm;
       // A direct solver "solves" a singular system too: its residual tells.
-      AssertThrow(std::isfinite(report.relative_residual),
-                  ExcMessage("The linear solve (" + report.method +
-                             ") produced non-finite values (NaN or Inf): "
-                             "the system is singular. Check that the "
-                             "Dirichlet conditions fix every rigid motion "
-                             "(every displacement component, and rotations)."));
+      internal::check_solve_result(true,
+                                   0,
+                                   report.relative_residual,
+                                   report.method);
       AssertThrow(method_name != "direct" || report.relative_residual <= 1e-6,
                   ExcMessage("The direct solver (" + report.method +
                              ") returned a solution with relative residual " +

@@ -56,17 +56,6 @@ namespace PeriDEAL
           }
       }
 
-      /// Stop on a right-hand side with NaN or Inf.
-      void
-      check_finite_rhs(const double rhs_norm)
-      {
-        AssertThrow(std::isfinite(rhs_norm),
-                    ExcMessage("The right-hand side of the linear system "
-                               "holds non-finite values (NaN or Inf): check "
-                               "the body force, traction and Dirichlet "
-                               "expressions."));
-      }
-
       /// Stop on a Krylov solve that did not converge, with @p fix.
       [[noreturn]] void
       throw_no_convergence(const std::string                  &method,
@@ -83,15 +72,6 @@ namespace PeriDEAL
                 << tolerance << ". " << fix;
         AssertThrow(false, ExcMessage(message.str()));
         std::abort(); // not reached
-      }
-
-      /// Stop on a solution with NaN or Inf (seen in its residual).
-      void
-      check_finite_residual(const double relative_residual)
-      {
-        AssertThrow(std::isfinite(relative_residual),
-                    ExcMessage("The linear solve produced non-finite values "
-                               "(NaN or Inf)."));
       }
     } // namespace
 
@@ -110,7 +90,7 @@ namespace PeriDEAL
       report.method =
         method_name + " + " + preconditioner + " (matrix-free operator)";
       const double rhs_norm = rhs.l2_norm();
-      check_finite_rhs(rhs_norm);
+      internal::check_finite_rhs(rhs_norm, report.method);
       if (rhs_norm == 0)
         {
           solution = 0;
@@ -204,7 +184,11 @@ namespace PeriDEAL
       op.vmult(residual, solution);
       residual.sadd(-1., 1., rhs);
       report.relative_residual = residual.l2_norm() / rhs_norm;
-      check_finite_residual(report.relative_residual);
+      internal::check_solve_result(control.last_check() ==
+                                     SolverControl::success,
+                                   control.last_value(),
+                                   report.relative_residual,
+                                   report.method);
       report.seconds = timer.wall_time();
       return report;
     }
@@ -244,7 +228,7 @@ namespace PeriDEAL
                                   "this system is not symmetric and has no "
                                   "matrix; use GMRES or BiCGStab"));
       const double rhs_norm = rhs.l2_norm();
-      check_finite_rhs(rhs_norm);
+      internal::check_finite_rhs(rhs_norm, report.method);
       solution = 0;
       if (rhs_norm == 0)
         return report;
@@ -286,7 +270,11 @@ namespace PeriDEAL
       op(residual, solution);
       residual.sadd(-1., 1., rhs);
       report.relative_residual = residual.l2_norm() / rhs_norm;
-      check_finite_residual(report.relative_residual);
+      internal::check_solve_result(control.last_check() ==
+                                     SolverControl::success,
+                                   control.last_value(),
+                                   report.relative_residual,
+                                   report.method);
       report.seconds = timer.wall_time();
       return report;
     }

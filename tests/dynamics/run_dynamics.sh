@@ -15,7 +15,25 @@
 #      # check: crack_angle <x0> <y0> <min_deg> <max_deg>
 #          the tracked crack tip (columns tip_x, tip_y) at the end lies in
 #          the direction atan2(tip_y - y0, tip_x - x0) within [min, max]
-#          degrees, at least two cells away from (x0, y0)
+#          degrees, at least two cells away from (x0, y0) (the larger cell
+#          side of the 'Geometry' box: Lower/Upper corner, Subdivisions)
+#      # check: verlet_energy_order <n_steps> [<every>]
+#          (on 1 process) over the first n_steps steps, before any bond
+#          breaks beyond the pre-crack (asserted), the balance moves only by
+#          velocity Verlet's O(dt^2) term. Velocity Verlet conserves
+#          K + W - (dt^2/8) sum_i m_i |a_i|^2 exactly for linear forces,
+#          with the work of loads and of prescribed values counted by the
+#          trapezoidal rule as the code does, so balance - balance(0) =
+#          (dt^2/8)(S_n - S_0), S = sum m |a|^2, plus terms of higher order
+#          in dt. The window is run again with the run's step dt and with
+#          dt/2, energy rows every <every> (default: the input's 'Energy
+#          every steps') and 2 <every> steps, i.e. at the same times; the
+#          largest |balance - balance(0)| over the rows must fall by 4
+#          within a factor 4/3, [3, 5.33]. Work left out or energies taken
+#          at mismatched times, O(1) or O(dt), give a ratio near 1 or 2;
+#          the higher-order terms of modes near the stability limit move
+#          it above 4. The drift must exceed 1e-9 of the energies (not
+#          round-off).
 #  - the energy history (energies.csv: energies to 1e-8 relative, broken
 #    bonds exactly) against EXPECTED.output, the same file for 1 and 2
 #    processes: the partition must not change the answer (a snapshot for
@@ -62,13 +80,54 @@ fi
 
 angle=$(sed -n 's/^# check: crack_angle *//p' input.prm)
 if [ -n "$angle" ]; then
-  awk -F, -v spec="$angle" 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next }
+  # The larger cell side of the box mesh (one subdivision count may stand
+  # for all directions).
+  cell=$(awk -F= '/^ *set Lower corner *=/ { lo = $2 } /^ *set Upper corner *=/ { up = $2 }
+    /^ *set Subdivisions *=/ { sub_ = $2 }
+    END { n = split(lo, a, ","); split(up, b, ","); m = split(sub_, s, ","); h = 0
+          for (k = 1; k <= n; ++k) { w = (b[k] - a[k]) / s[m > 1 ? k : 1]; if (w > h) h = w }
+          print h }' input.prm)
+  awk -v h="$cell" 'BEGIN { exit !(h > 0) }' \
+    || { echo "FAIL: crack_angle needs a box mesh ('Geometry/Lower corner', 'Upper corner', 'Subdivisions') for the cell size"; exit 1; }
+  awk -F, -v spec="$angle" -v h="$cell" 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next }
     { x = $col["tip_x"]; y = $col["tip_y"] }
     END { split(spec, a, " "); dx = x - a[1]; dy = y - a[2]
           deg = atan2(dy, dx) * 45 / atan2(1, 1); r = sqrt(dx * dx + dy * dy)
-          printf "crack tip at (%g, %g): %.1f deg from (%s, %s), %g away (expected %s to %s deg)\n", x, y, deg, a[1], a[2], r, a[3], a[4]
-          exit !(deg >= a[3] && deg <= a[4] && r > 0) }' "$csv" \
+          printf "crack tip at (%g, %g): %.1f deg from (%s, %s), %g away (expected %s to %s deg, at least two cells = %g away)\n", x, y, deg, a[1], a[2], r, a[3], a[4], 2 * h
+          exit !(deg >= a[3] && deg <= a[4] && r >= 2 * h) }' "$csv" \
     || { echo "FAIL: crack angle"; exit 1; }
+fi
+
+order=$(sed -n 's/^# check: verlet_energy_order *//p' input.prm)
+if [ -n "$order" ] && [ "$nprocs" -eq 1 ]; then
+  dt=$(sed -n 's/.* time step \([0-9.eE+-]*\) s (.*/\1/p' log | head -1)
+  read -r order every <<< "$order"
+  [ -n "$every" ] || every=$(sed -n 's/^ *set Energy every steps *= *//p' input.prm)
+  every=${every:-10}
+  [ -n "$dt" ] || { cat log; echo "FAIL: no time step in the log"; exit 1; }
+  for k in 1 2; do
+    # The window as End time = n_steps dt, its step End time / (k n_steps)
+    # (a whole number of steps), energy rows every k * every steps.
+    awk -v dt="$dt" -v n="$order" -v k="$k" -v every="$every" '
+      BEGIN { end = n * dt; printf "%.17g %.17g %d\n", end, end / (k * n), k * every }' > window
+    read -r end step rows < window
+    sed -E '/^ *set (End time|Time step|Energy every steps|Output every steps|Output interval|Write VTU|Directory) *=/d' input.prm \
+      | sed -e "s/^\( *\)subsection explicit dynamics *$/&\n\1  set End time = $end\n\1  set Time step = $step\n\1  set Energy every steps = $rows/" \
+            -e "s/^\( *\)subsection Output *$/&\n\1  set Write VTU = false\n\1  set Directory = order$k/" > order$k.prm
+    "$perideal" order$k.prm > order$k.log 2>&1 \
+      || { cat order$k.log; echo "FAIL: the dt/$k window run failed"; exit 1; }
+  done
+  awk -F, 'FNR == 1 { ++run; next }
+    FNR == 2 { b0[run] = $6; k0[run] = $7 }
+    { d = $6 - b0[run]; if (d < 0) d = -d; if (d > m[run]) m[run] = d
+      if ($3 + $4 > e[run]) e[run] = $3 + $4; if ($7 != k0[run]) broke[run] = 1; n[run]++ }
+    END { ratio = m[2] > 0 ? m[1] / m[2] : 0
+          printf "energy balance over the first steps: largest drift %.4e at dt, %.4e at dt/2 (ratio %.3f, expected 4 within [3, 5.33]; %d and %d rows)\n", m[1], m[2], ratio, n[1], n[2]
+          if (broke[1] || broke[2]) { print "bonds broke in the window: make it shorter"; exit 1 }
+          if (n[1] < 2 || n[1] != n[2]) { print "the two runs must have the same rows, at least two"; exit 1 }
+          if (m[1] <= 1e-9 * e[1]) { print "the drift is round-off: nothing to compare"; exit 1 }
+          exit !(ratio >= 3 && ratio <= 16 / 3) }' order1/energies.csv order2/energies.csv \
+    || { echo "FAIL: the energy balance does not move as O(dt^2) before bonds break"; exit 1; }
 fi
 
 # Energies to 1e-8 relative; the broken-bond counts (integers) exactly.

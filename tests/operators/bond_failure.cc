@@ -11,8 +11,13 @@
 //   were used before the commit and runs after it; after the
 //   commit, nodes of the full stencil with broken bonds stay in the
 //   stencil chunks with those bonds masked, also asserted);
-// - the bonds found over it are exactly the pairs the brute force finds,
-//   and after commit_broken_bonds() they stay out;
+// - the bonds found over it are exactly the pairs the brute force finds:
+//   after commit_broken_bonds() the broken bonds of the bond state are
+//   those pairs, pair by pair; and they stay out: after the displacement
+//   is relaxed to a tenth, where no bond reaches its critical stretch
+//   (asserted by the brute force), the forces and the energy are the
+//   brute-force sums without the committed bonds (an uncommitted bond
+//   would be back in the sums), and evaluating there breaks no bond;
 // - the elastic energy against sum_i V_i W_i (from its own pass, and from
 //   the force pass of apply_with_energy()), and its derivative against
 //   the forces (central differences: F = -dE/du, which holds because the
@@ -43,7 +48,10 @@
 #include <perideal/operators/bond_operator.h>
 #include <perideal/quadrature/exact_partial_volume.h>
 
+#include <algorithm>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 using namespace dealii;
 using namespace PeriDEAL;
@@ -62,6 +70,10 @@ field(const Point<dim> &x, const double x_c)
     u[0] += 0.03 + 0.01 * std::sin(x[1]);
   return u;
 }
+
+// The same field relaxed to a tenth: every stretch stays well below the
+// critical stretch (the brute force checks it).
+constexpr double relaxation = 0.1;
 
 template <int dim>
 void
@@ -133,50 +145,61 @@ check(const std::string &model_name,
                                     nodes.nodes().begin() + nodes.n_owned())))
     all.insert(all.end(), part.begin(), part.end());
   const unsigned int          n = all.size();
-  std::vector<Tensor<1, dim>> U(n);
+  std::vector<Tensor<1, dim>> U(n), U_relaxed(n);
   for (unsigned int i = 0; i < n; ++i)
-    U[i] = field(all[i].location, x_c);
+    {
+      U[i]         = field(all[i].location, x_c);
+      U_relaxed[i] = relaxation * U[i];
+    }
   auto weight = [&](const unsigned int i, const unsigned int j) {
     return i == j ? 0. :
                     exact.weight(all[i].location, horizon, all[j].cell) *
                       all[j].volume();
   };
-  // Deformed bond, extension, intact?
-  auto bond = [&](const unsigned int i,
-                  const unsigned int j,
-                  Tensor<1, dim>    &y,
-                  double            &r,
-                  double            &e) {
+  // Deformed bond, extension, below the critical stretch?
+  auto bond = [&](const std::vector<Tensor<1, dim>> &D,
+                  const unsigned int                 i,
+                  const unsigned int                 j,
+                  Tensor<1, dim>                    &y,
+                  double                            &r,
+                  double                            &e) {
     const Tensor<1, dim> xi = all[j].location - all[i].location;
     r                       = xi.norm();
-    y                       = xi + (U[j] - U[i]);
+    y                       = xi + (D[j] - D[i]);
     e                       = y.norm() - r;
     return e / r < s0;
   };
-  std::vector<double> m(n, 0.), theta(n, 0.);
-  std::size_t         failed_pairs = 0;
+  // The bond pairs over the critical stretch at u (as global DoF pairs,
+  // both directions) and at the relaxed displacement; m_i from all bonds.
+  std::vector<double> m(n, 0.);
+  std::vector<std::pair<types::global_dof_index, types::global_dof_index>>
+              failed;
+  std::size_t failed_pairs = 0, failed_relaxed = 0;
+  std::vector<std::vector<char>> is_failed(n);
   for (unsigned int i = 0; i < n; ++i)
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        const double w = weight(i, j);
-        if (w == 0)
-          continue;
-        Tensor<1, dim> y;
-        double         r, e;
-        const bool     intact = bond(i, j, y, r, e);
-        const double   omega  = model->influence(r, horizon);
-        m[i] += omega * r * r * w;
-        if (!intact)
-          {
-            failed_pairs += (i < j);
+    {
+      is_failed[i].assign(n, 0);
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const double w = weight(i, j);
+          if (w == 0)
             continue;
-          }
-        theta[i] += omega * r * w * e;
-      }
-  for (unsigned int i = 0; i < n; ++i)
-    theta[i] *= model->is_state_based() ? dim / m[i] : 0.;
+          Tensor<1, dim> y;
+          double         r = (all[j].location - all[i].location).norm(), e;
+          m[i] += model->influence(r, horizon) * r * r * w;
+          if (!bond(U, i, j, y, r, e))
+            {
+              is_failed[i][j] = 1;
+              failed.emplace_back(all[i].dofs[0], all[j].dofs[0]);
+              failed_pairs += (i < j);
+            }
+          failed_relaxed += (i < j) && !bond(U_relaxed, i, j, y, r, e);
+        }
+    }
+  std::sort(failed.begin(), failed.end());
 
-  double diff2 = 0, norm2 = 0, after2 = 0, brute_energy = 0;
+  // Forces of the owned nodes and their energy sum_i V_i W_i from the
+  // displacement D, without the bonds for which is_out(i, j) holds.
   // The potential of the LPS force state (t = (c_K theta omega r + c_mu
   // omega e) / m, c_K = d kappa - c_mu / d): W = c_mu/(2m) sum omega e^2 w +
   // lambda theta^2 / 2 with lambda = c_K / d = kappa - c_mu / d^2, i.e.
@@ -188,51 +211,149 @@ check(const std::string &model_name,
       (model->plane_stress() ? 9 * K * mu / (3 * K + 4 * mu) : K + mu / 3);
   const double lambda =
     model->is_state_based() ? (dim == 3 ? K - 5 * mu / 3 : kappa - 2 * mu) : 0.;
-  for (unsigned int i = 0; i < n; ++i)
-    {
-      const auto dofs = all[i].dofs;
-      if (!dof_handler.locally_owned_dofs().is_element(dofs[0]))
-        continue;
-      Tensor<1, dim> f;
-      double         W = 0;
+  const auto brute_force = [&](const std::vector<Tensor<1, dim>> &D,
+                               const auto                        &is_out,
+                               std::vector<Tensor<1, dim>>       &f,
+                               double                            &energy) {
+    std::vector<double> theta(n, 0.);
+    for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
         {
           const double w = weight(i, j);
-          if (w == 0)
+          if (w == 0 || is_out(i, j))
             continue;
           Tensor<1, dim> y;
           double         r, e;
-          if (!bond(i, j, y, r, e))
-            continue;
-          const double t =
-            model->dilatation_coefficient(m[i], r, horizon) * theta[i] +
-            model->dilatation_coefficient(m[j], r, horizon) * theta[j] +
-            (model->extension_coefficient(m[i], r, horizon) +
-             model->extension_coefficient(m[j], r, horizon)) *
-              e;
-          f += all[i].volume() * w * t * y / y.norm();
-          W += 0.5 * model->extension_coefficient(m[i], r, horizon) * e * e * w;
+          bond(D, i, j, y, r, e);
+          theta[i] += model->influence(r, horizon) * r * w * e;
         }
-      W += 0.5 * lambda * theta[i] * theta[i];
-      brute_energy += all[i].volume() * W;
-      for (unsigned int c = 0; c < dim; ++c)
-        {
-          diff2 += std::pow(force[dofs[c]] - f[c], 2);
-          after2 += std::pow(force_after[dofs[c]] - f[c], 2);
-          norm2 += f[c] * f[c];
-        }
-    }
-  diff2                       = Utilities::MPI::sum(diff2, comm);
-  after2                      = Utilities::MPI::sum(after2, comm);
+    for (unsigned int i = 0; i < n; ++i)
+      theta[i] *= model->is_state_based() ? dim / m[i] : 0.;
+    f.assign(n, Tensor<1, dim>());
+    energy = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        if (!dof_handler.locally_owned_dofs().is_element(all[i].dofs[0]))
+          continue;
+        double W = 0;
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            const double w = weight(i, j);
+            if (w == 0 || is_out(i, j))
+              continue;
+            Tensor<1, dim> y;
+            double         r, e;
+            bond(D, i, j, y, r, e);
+            const double t =
+              model->dilatation_coefficient(m[i], r, horizon) * theta[i] +
+              model->dilatation_coefficient(m[j], r, horizon) * theta[j] +
+              (model->extension_coefficient(m[i], r, horizon) +
+               model->extension_coefficient(m[j], r, horizon)) *
+                e;
+            f[i] += all[i].volume() * w * t * y / y.norm();
+            W += 0.5 * model->extension_coefficient(m[i], r, horizon) * e * e *
+                 w;
+          }
+        W += 0.5 * lambda * theta[i] * theta[i];
+        energy += all[i].volume() * W;
+      }
+    energy = Utilities::MPI::sum(energy, comm);
+  };
+  // Relative l2 difference of an operator's forces from brute-force ones.
+  const auto difference = [&](const typename Operators::BondOperator<
+                                dim>::VectorType                &force_vector,
+                              const std::vector<Tensor<1, dim>> &f) {
+    double diff2 = 0, norm2 = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      if (dof_handler.locally_owned_dofs().is_element(all[i].dofs[0]))
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            diff2 += std::pow(force_vector[all[i].dofs[c]] - f[i][c], 2);
+            norm2 += f[i][c] * f[i][c];
+          }
+    return std::sqrt(Utilities::MPI::sum(diff2, comm) /
+                     Utilities::MPI::sum(norm2, comm));
+  };
+
+  std::vector<Tensor<1, dim>> brute_f;
+  double                      brute_energy = 0;
+  brute_force(
+    U,
+    [&](const unsigned int i, const unsigned int j) {
+      return is_failed[i][j] != 0;
+    },
+    brute_f,
+    brute_energy);
+  double norm2 = 0;
+  for (unsigned int i = 0; i < n; ++i)
+    if (dof_handler.locally_owned_dofs().is_element(all[i].dofs[0]))
+      norm2 += brute_f[i] * brute_f[i];
   norm2                       = Utilities::MPI::sum(norm2, comm);
-  brute_energy                = Utilities::MPI::sum(brute_energy, comm);
-  const double relative       = std::sqrt(diff2 / norm2);
-  const double relative_after = std::sqrt(after2 / norm2);
+  const double relative       = difference(force, brute_f);
+  const double relative_after = difference(force_after, brute_f);
   const double energy_error   = std::abs(energy - brute_energy) / brute_energy;
   // Before the commit the bonds over the critical stretch are left out of
   // the same pass, so its energy is the same sum.
   const double energy_before_error =
     std::abs(energy_before - brute_energy) / brute_energy;
+
+  // The broken bonds of the bond state, pair by pair: owned node, then
+  // neighbour (global DoF of the first component), both directions.
+  std::vector<std::pair<types::global_dof_index, types::global_dof_index>>
+    committed;
+  {
+    std::vector<std::pair<types::global_dof_index, types::global_dof_index>>
+      mine;
+    for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+      if (lists.has_list(i))
+        for (unsigned int k = 0; k < lists.n_bonds(i); ++k)
+          if (state.is_broken(i, k))
+            mine.emplace_back(nodes[i].dofs[0],
+                              nodes[state.neighbor(i, k)].dofs[0]);
+    for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+      committed.insert(committed.end(), part.begin(), part.end());
+    std::sort(committed.begin(), committed.end());
+  }
+  const bool same_pairs = committed == failed;
+
+  // Relaxed: the committed bonds stay out although no bond is over its
+  // critical stretch any more; this evaluation breaks nothing new.
+  typename Operators::BondOperator<dim>::VectorType u_relaxed, force_relaxed;
+  op.initialize_dof_vector(u_relaxed);
+  op.initialize_dof_vector(force_relaxed);
+  for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+    for (unsigned int c = 0; c < dim; ++c)
+      u_relaxed[nodes[i].dofs[c]] = relaxation * u[nodes[i].dofs[c]];
+  u_relaxed.update_ghost_values();
+  const double energy_relaxed_pass = op.apply_with_energy(u_relaxed,
+                                                          force_relaxed);
+  const std::size_t n_committed_relaxed = op.commit_broken_bonds(state);
+  const double      energy_relaxed      = op.elastic_energy(u_relaxed);
+  std::vector<Tensor<1, dim>> brute_f_relaxed;
+  double                      brute_energy_relaxed = 0;
+  brute_force(
+    U_relaxed,
+    [&](const unsigned int i, const unsigned int j) {
+      return is_failed[i][j] != 0;
+    },
+    brute_f_relaxed,
+    brute_energy_relaxed);
+  const double relative_relaxed = difference(force_relaxed, brute_f_relaxed);
+  const double energy_relaxed_error =
+    std::max(std::abs(energy_relaxed - brute_energy_relaxed),
+             std::abs(energy_relaxed_pass - brute_energy_relaxed)) /
+    brute_energy_relaxed;
+  // The same sums with every bond in: what an operator that forgot the
+  // commit would give (the test must be able to tell them apart).
+  std::vector<Tensor<1, dim>> intact_f_relaxed;
+  double                      intact_energy_relaxed = 0;
+  brute_force(
+    U_relaxed,
+    [](const unsigned int, const unsigned int) { return false; },
+    intact_f_relaxed,
+    intact_energy_relaxed);
+  const double commit_effect = difference(force_relaxed, intact_f_relaxed);
+
   const unsigned int n_run_nodes = Utilities::MPI::sum(op.n_run_nodes(), comm);
   // Nodes of the full stencil that lost bonds: the passes keep them in the
   // stencil chunks with their broken bonds masked.
@@ -277,15 +398,29 @@ check(const std::string &model_name,
             << "  finite-kinematics forces against the brute-force sum <= "
                "1e-12: "
             << (relative <= 1e-12 ? "yes" : "NO")
-            << "\n  committed pairs = brute-force pairs: "
-            << (n_committed == failed_pairs ? "yes" : "NO")
-            << "\n  forces after the commit unchanged <= 1e-12: "
+            << "\n  committed pairs = brute-force pairs, pair by pair: "
+            << (n_committed == failed_pairs && same_pairs ? "yes" : "NO")
+            << "\n  forces after the commit, same displacement, unchanged <= "
+               "1e-12: "
             << (relative_after <= 1e-12 ? "yes" : "NO")
             << "\n  elastic energy against the brute-force sum <= 1e-12: "
             << (energy_error <= 1e-12 ? "yes" : "NO")
             << "\n  energy from the force pass before the commit, the same "
                "<= 1e-12: "
             << (energy_before_error <= 1e-12 ? "yes" : "NO")
+            << "\n  relaxed to a tenth: no bond over the critical stretch "
+               "(brute force): "
+            << (failed_relaxed == 0 ? "yes" : "NO")
+            << "\n  relaxed: forces = brute force without the committed "
+               "bonds <= 1e-12: "
+            << (relative_relaxed <= 1e-12 ? "yes" : "NO")
+            << "\n  relaxed: forces differ from all bonds intact by > 1e-3: "
+            << (commit_effect > 1e-3 ? "yes" : "NO")
+            << "\n  relaxed: energy (both passes) without the committed bonds "
+               "<= 1e-12: "
+            << (energy_relaxed_error <= 1e-12 ? "yes" : "NO")
+            << "\n  relaxed: no new bond broken: "
+            << (n_committed_relaxed == 0 ? "yes" : "NO")
             << "\n  surface nodes evaluated in runs (after the commit) > 0: "
             << (n_run_nodes > 0 ? "yes" : "NO")
             << "\n  longest surface run (before the commit) >= 2 nodes: "
@@ -295,13 +430,21 @@ check(const std::string &model_name,
             << (n_masked > 0 ? "yes" : "NO")
             << "\n  F = -dE/du by central differences <= 1e-6: "
             << (fd_error <= 1e-6 ? "yes" : "NO") << std::endl;
-  if (relative > 1e-12 || n_committed != failed_pairs || energy_error > 1e-12 ||
-      relative_after > 1e-12 || energy_before_error > 1e-12 ||
+  if (relative > 1e-12 || n_committed != failed_pairs || !same_pairs ||
+      energy_error > 1e-12 || relative_after > 1e-12 ||
+      energy_before_error > 1e-12 || failed_relaxed != 0 ||
+      relative_relaxed > 1e-12 || commit_effect <= 1e-3 ||
+      energy_relaxed_error > 1e-12 || n_committed_relaxed != 0 ||
       fd_error > 1e-6 || n_run_nodes == 0 || longest_run < 2 || n_masked == 0)
     std::cout << "  (force " << relative << ", after the commit "
-              << relative_after << ", committed " << n_committed << ", energy "
-              << energy_error << ", energy before " << energy_before_error
-              << ", derivative " << fd_error << ", run nodes " << n_run_nodes
+              << relative_after << ", committed " << n_committed << " ("
+              << committed.size() << " directed, " << failed.size()
+              << " by brute force), energy " << energy_error
+              << ", energy before " << energy_before_error << ", relaxed: "
+              << failed_relaxed << " over, force " << relative_relaxed
+              << ", against all intact " << commit_effect << ", energy "
+              << energy_relaxed_error << ", new " << n_committed_relaxed
+              << "; derivative " << fd_error << ", run nodes " << n_run_nodes
               << ", longest run " << longest_run << ", masked nodes "
               << n_masked << ")" << std::endl;
 

@@ -1,7 +1,10 @@
 #ifndef perideal_base_input_checks_h
 #define perideal_base_input_checks_h
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace PeriDEAL
@@ -27,6 +30,55 @@ namespace PeriDEAL
    */
   std::vector<InputEntry>
   scan_input_file(const std::string &file);
+
+
+  /**
+   * An entry, or a whole subsection, that has no effect on a run as it is
+   * configured: a value the user gives there would be ignored silently.
+   */
+  struct UnusedEntry
+  {
+    /**
+     * The entry's path 'Subsection/Name'; a path that ends in '/' stands
+     * for every entry of that subsection (nested ones included), and a
+     * component '*' for any one subsection name.
+     */
+    std::string pattern;
+    /// Why it has no effect and what to do, for the error message.
+    std::string why;
+  };
+
+
+  /**
+   * The entries of @p prm whose value differs from the one in @p defaults
+   * (the same declarations, nothing parsed), as pairs of 'Subsection/Name'
+   * and value. Values are compared without white space, and numerically
+   * where both are numbers ("1e-2" equals "0.01"): an entry set to its
+   * default is as good as one left out.
+   */
+  std::vector<std::pair<std::string, std::string>>
+  changed_entries(const dealii::ParameterHandler &prm,
+                  const dealii::ParameterHandler &defaults);
+
+
+  /**
+   * Throw ExcInvalidInput for the first entry of @p changed (see
+   * changed_entries()) that matches one of @p unused: the message names the
+   * entry, its value and the rule's reason.
+   */
+  void
+  check_unused_entries(
+    const std::vector<std::pair<std::string, std::string>> &changed,
+    const std::vector<UnusedEntry>                         &unused);
+
+
+  /**
+   * Whether the muparser @p expression refers to the variable @p name (as a
+   * whole identifier, not inside a longer name or a number such as "1e5").
+   */
+  bool
+  expression_uses_variable(const std::string &expression,
+                           const std::string &name);
 } // namespace PeriDEAL
 
 #endif

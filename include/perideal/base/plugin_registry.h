@@ -13,6 +13,28 @@
 
 namespace PeriDEAL
 {
+  namespace internal
+  {
+    /**
+     * Registration errors of the shared library being loaded. A plugin in a
+     * user's library registers while dlopen() runs the library's static
+     * initialisers, and an exception cannot pass through dlopen() (the
+     * program would terminate): while @p collect is set (by
+     * load_shared_libraries()), PluginRegistry::register_class() records
+     * its errors here instead of throwing, and the loader reports them.
+     */
+    struct RegistrationErrors
+    {
+      bool                     collect = false;
+      std::vector<std::string> messages;
+    };
+
+    /// The one RegistrationErrors object of the program.
+    RegistrationErrors &
+    registration_errors();
+  } // namespace internal
+
+
   /**
    * A name-to-factory registry for one family of interchangeable classes
    * (partial-volume algorithms, material models, boundary treatments, ...),
@@ -122,9 +144,19 @@ namespace PeriDEAL
     const ParameterDeclaration &declare_parameters,
     const Factory              &factory)
   {
-    AssertThrow(entries().count(name) == 0,
-                dealii::ExcMessage("The name '" + name +
-                                   "' is registered twice."));
+    if (entries().count(name) != 0)
+      {
+        const std::string message =
+          "The " + Interface::family_name() + " '" + name +
+          "' is registered twice: a plugin needs a name that no built-in "
+          "class and no other loaded library uses.";
+        if (internal::registration_errors().collect)
+          {
+            internal::registration_errors().messages.push_back(message);
+            return false;
+          }
+        AssertThrow(false, dealii::ExcMessage(message));
+      }
     entries()[name] = Entry{description, declare_parameters, factory};
     return true;
   }

@@ -13,10 +13,13 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <perideal/base/input_checks.h>
 #include <perideal/discretization/node_set.h>
 
+#include <array>
 #include <memory>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace PeriDEAL
@@ -51,11 +54,38 @@ namespace PeriDEAL
      * PeriDEAL they are 0/1 for the faces x = min/max, 2/3 for y and 4/5
      * for z. Loads on constrained DoFs are dropped (the reaction there is
      * whatever the constraint needs).
+     *
+     * Every function may depend on the time t (its last variable, e.g.
+     * 'x,y,t'); the functions are evaluated at the time given to
+     * set_time(). Whether an expression uses t is known from its text
+     * (load_depends_on_time(), dirichlet_depends_on_time()), so that time
+     * stepping re-evaluates only what changes.
      */
     template <int dim>
     class BoundaryConditions
     {
     public:
+      /**
+       * Where a time-dependent load acts, so that time stepping can
+       * re-evaluate it without a pass over the mesh: a node, with the body
+       * force \f$V_i b(x_i, t)\f$, or a loaded boundary face f, with the
+       * traction \f$t(x_f, t)\,|f|\f$ (load_at()).
+       */
+      struct LoadSite
+      {
+        /// The node's location, or the face's centre.
+        Point<dim> point;
+        /// The outward unit normal of a face; zero for a node.
+        Tensor<1, dim> normal;
+        /// V_i of a node, |f| of a face (1 for a 1D face, a point).
+        double measure = 0;
+        /// Whether the site is a face (traction) or a node (body force).
+        bool on_face = false;
+        /// The DoFs the force goes to, per component; invalid where the
+        /// component is constrained (the load there is dropped).
+        std::array<types::global_dof_index, dim> dofs;
+      };
+
       BoundaryConditions();
 
       /**
@@ -88,6 +118,52 @@ namespace PeriDEAL
                const Discretization::NodeSet<dim> &nodes,
                const AffineConstraints<double>    &constraints,
                TrilinosWrappers::MPI::Vector      &load) const;
+
+      /**
+       * As add_load(), but only the loads whose functions do not depend on
+       * time go into @p load; the sites of those that do (every owned node
+       * for a time-dependent body force, every loaded owned face for a
+       * time-dependent traction) are returned, to be evaluated at each time
+       * with load_at().
+       */
+      std::vector<LoadSite>
+      add_constant_load(const DoFHandler<dim>              &dof_handler,
+                        const Discretization::NodeSet<dim> &nodes,
+                        const AffineConstraints<double>    &constraints,
+                        TrilinosWrappers::MPI::Vector      &load) const;
+
+      /// The force at @p site at the time of set_time().
+      Tensor<1, dim>
+      load_at(const LoadSite &site) const;
+
+      /// The entry whose function gives the load at @p site, for messages.
+      std::string
+      load_entry(const LoadSite &site) const;
+
+      /// Whether the body force or the traction in use depends on t.
+      bool
+      load_depends_on_time() const;
+
+      /// Whether the prescribed 'Dirichlet displacement' depends on t.
+      bool
+      dirichlet_depends_on_time() const;
+
+      /// Whether any node may be prescribed (Dirichlet ids or boxes given).
+      bool
+      has_dirichlet() const;
+
+      /// Whether there is any load: a body force that is not '0' in every
+      /// component, or traction boundary ids.
+      bool
+      has_load() const;
+
+      /**
+       * Entries of 'Boundary conditions' (full paths) that have no effect
+       * with the others as given: e.g. the traction function without
+       * traction boundary ids (Problems::ProblemType::unused_entries()).
+       */
+      std::vector<UnusedEntry>
+      unused_entries() const;
 
       /**
        * The number of owned nodes with at least one constrained component.
@@ -147,6 +223,15 @@ namespace PeriDEAL
       }
 
     private:
+      /// add_load() and add_constant_load(): with @p sites, the loads that
+      /// depend on time go there instead of into @p load.
+      void
+      collect_load(const DoFHandler<dim>              &dof_handler,
+                   const Discretization::NodeSet<dim> &nodes,
+                   const AffineConstraints<double>    &constraints,
+                   TrilinosWrappers::MPI::Vector      &load,
+                   std::vector<LoadSite>              *sites) const;
+
       std::vector<types::boundary_id> dirichlet_ids;
       std::vector<bool>               dirichlet_components;
       std::vector<BoundingBox<dim>>   dirichlet_boxes;
@@ -160,6 +245,11 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> traction;
       std::unique_ptr<Functions::ParsedFunction<dim>> boundary_stress;
       bool traction_from_stress = false;
+      /// Whether each function uses t, and whether the body force is
+      /// given as zero in every component.
+      bool dirichlet_uses_time = false, body_force_uses_time = false,
+           traction_uses_time = false, stress_uses_time = false,
+           zero_body_force = true;
     };
   } // namespace Boundary
 } // namespace PeriDEAL

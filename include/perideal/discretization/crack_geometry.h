@@ -53,15 +53,23 @@ namespace PeriDEAL
        * Break every bond of every node with a list (owned and ghost) that
        * meets a pre-crack, and synchronise @p state (collective). @p reach
        * bounds the length of a bond. Returns the number of bond pairs broken
-       * on all processes.
+       * on all processes. With @p per_crack, also the number of bonds of
+       * owned nodes (on all processes) that each pre-crack breaks first (a
+       * bond that several cross counts for the first): 0 where one lies
+       * outside the body and does nothing.
        */
       std::size_t
-      break_bonds(const NodeSet<dim>      &nodes,
-                  const NeighborList<dim> &lists,
-                  BondState<dim>          &state,
-                  const double             reach) const;
+      break_bonds(const NodeSet<dim>       &nodes,
+                  const NeighborList<dim>  &lists,
+                  BondState<dim>           &state,
+                  const double              reach,
+                  std::vector<std::size_t> *per_crack = nullptr) const;
 
     private:
+      /// The first pre-crack that the segment [a, b] meets, or -1.
+      int
+      first_cut(const Point<dim> &a, const Point<dim> &b) const;
+
       struct Crack
       {
         std::vector<Point<dim>> vertices;
@@ -99,6 +107,19 @@ namespace PeriDEAL
     template <int dim>
     std::vector<Point<dim>>
     parse_points(const std::string &text, const std::string &entry);
+
+    /**
+     * Check that each of @p points lies on the body: in (or on the boundary
+     * of) the cell of an owned node of some process. Otherwise all
+     * processes throw an error naming @p entry, its value @p text and the
+     * point, instead of letting the nearest node stand for it. Collective.
+     */
+    template <int dim>
+    void
+    check_points_in_body(const NodeSet<dim>            &nodes,
+                         const std::vector<Point<dim>> &points,
+                         const std::string             &entry,
+                         const std::string             &text);
   } // namespace Discretization
 } // namespace PeriDEAL
 

@@ -54,6 +54,16 @@ namespace PeriDEAL
         return active;
       }
 
+      /**
+       * Check, once the nodes exist, that the origin lies on the body and
+       * that every box of the region holds a node: otherwise the tracker
+       * would measure from a point off the body or count no node of a box.
+       * Errors name the entry in @p section. Collective.
+       */
+      void
+      check_on_body(const Discretization::NodeSet<dim> &nodes,
+                    const std::string                  &section) const;
+
       /// tip_x, tip_y[, tip_z], tip_distance, front_spread.
       std::vector<std::string>
       column_names() const;
@@ -73,6 +83,7 @@ namespace PeriDEAL
       Point<dim>                    origin;
       std::vector<BoundingBox<dim>> region;
       double                        threshold = 0.35;
+      std::string                   origin_text, region_text;
     };
   } // namespace IO
 } // namespace PeriDEAL

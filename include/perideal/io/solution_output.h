@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/discretization/node_set.h>
+#include <perideal/io/output_names.h>
 
 #include <string>
 #include <utility>
@@ -95,6 +96,15 @@ namespace PeriDEAL
 
       const std::string &
       directory() const;
+
+      /**
+       * The names this output writes, for check_output_names(): the
+       * records (<base name>_<n>.pvtu and their pieces) and, with
+       * @p time_series, the time series <base name>.pvd; nothing when
+       * 'Write VTU' is off.
+       */
+      std::vector<OutputName>
+      output_names(const bool time_series) const;
 
       /// Whether VTU output is written ('Write VTU').
       bool

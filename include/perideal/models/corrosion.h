@@ -69,6 +69,11 @@ namespace PeriDEAL
       void
       parse_parameters(ParameterHandler &prm) override;
 
+      /// 'Initial concentration' (the phases set it), and the constants of
+      /// the interface model or the damage that are not selected.
+      std::vector<UnusedEntry>
+      unused_entries() const override;
+
       bool
       supports_implicit() const override
       {
@@ -80,6 +85,10 @@ namespace PeriDEAL
 
       double
       largest_time_step(const DiffusionSetup<dim> &setup) const override;
+
+      /// 'Current density' through the dissolution rate.
+      typename DiffusionModel<dim>::TimeStepLimit
+      time_step_limit() const override;
 
       void
       after_step(const DiffusionSetup<dim> &setup,
@@ -137,7 +146,7 @@ namespace PeriDEAL
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_phase;
       Point<dim>                                      depth_origin;
       Tensor<1, dim>                                  depth_direction;
-      std::string                                     c_sat_text, phase_text;
+      std::string c_sat_text, phase_text, current_density_text;
 
       // State.
       std::vector<unsigned char>     phase;           // per node of the set

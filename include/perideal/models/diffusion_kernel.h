@@ -55,7 +55,9 @@ namespace PeriDEAL
       parse_parameters(ParameterHandler &prm, const std::string &section);
 
       /// Set the dimension and the horizon; computes \f$\kappa\f$ by flux
-      /// matching on the continuous ball.
+      /// matching on the continuous ball. A \f$\kappa\f$ out of the range
+      /// of doubles (a diffusivity such as 1e308) is refused, naming
+      /// 'Diffusivity'.
       void
       reinit(const unsigned int dim, const double horizon);
 
@@ -151,6 +153,12 @@ namespace PeriDEAL
       bool                               on_lattice = false;
       std::string                        omega_name;
       std::unique_ptr<InfluenceFunction> omega;
+      /// 'Diffusivity' as given and its subsection, for messages.
+      std::string diffusivity_text, section_name;
+
+      /// Throw naming 'Diffusivity' unless kappa is finite and positive.
+      void
+      check_kappa() const;
     };
   } // namespace Models
 } // namespace PeriDEAL

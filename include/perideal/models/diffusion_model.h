@@ -5,6 +5,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <perideal/base/input_checks.h>
 #include <perideal/base/plugin_registry.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
@@ -54,6 +55,15 @@ namespace PeriDEAL
       virtual void
       parse_parameters(ParameterHandler &prm);
 
+      /**
+       * Entries of the 'diffusion' subsection (paths relative to it, e.g.
+       * 'Initial concentration/' or '<name>/Damage seed') that have no
+       * effect with this model as configured; the simulator refuses them
+       * when set (Problems::ProblemType::unused_entries()). Default: none.
+       */
+      virtual std::vector<UnusedEntry>
+      unused_entries() const;
+
       /// Whether implicit time stepping and steady states apply.
       virtual bool
       supports_implicit() const;
@@ -70,6 +80,18 @@ namespace PeriDEAL
       /// stability bound (+inf by default). Collective.
       virtual double
       largest_time_step(const DiffusionSetup<dim> &setup) const;
+
+      /// What sets largest_time_step(), for messages: why the model limits
+      /// the step, and the entry ('diffusion/<model>/<Entry>') with its
+      /// value as given that sets the limit (empty: none).
+      struct TimeStepLimit
+      {
+        std::string reason, entry, value;
+      };
+
+      /// What sets largest_time_step() (empty by default).
+      virtual TimeStepLimit
+      time_step_limit() const;
 
       /**
        * After each time step, with the owned values of @p c at @p time;
@@ -109,6 +131,7 @@ namespace PeriDEAL
     using DiffusionModelRegistry = PluginRegistry<DiffusionModel<dim>>;
   } // namespace Models
 
+  extern template class PluginRegistry<Models::DiffusionModel<1>>;
   extern template class PluginRegistry<Models::DiffusionModel<2>>;
   extern template class PluginRegistry<Models::DiffusionModel<3>>;
 } // namespace PeriDEAL

@@ -54,4 +54,15 @@ namespace PeriDEAL
   extern template class PluginRegistry<Models::InfluenceFunction>;
 } // namespace PeriDEAL
 
+/**
+ * Register the influence function @p Class (derived from
+ * PeriDEAL::Models::InfluenceFunction) under @p name; it can then be chosen
+ * as the "Influence function" of the isotropic material models.
+ */
+#define PERIDEAL_REGISTER_INFLUENCE_FUNCTION(Class, name, description) \
+  PERIDEAL_REGISTER_CLASS(::PeriDEAL::Models::InfluenceFunction,       \
+                          Class,                                       \
+                          name,                                        \
+                          description)
+
 #endif

@@ -1,12 +1,14 @@
 #ifndef perideal_models_model_h
 #define perideal_models_model_h
 
+#include <perideal/base/input_checks.h>
 #include <perideal/base/plugin_registry.h>
 #include <perideal/models/influence_function.h>
 
 #include <memory>
-
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace PeriDEAL
 {
@@ -44,6 +46,16 @@ namespace PeriDEAL
       /// Read the material constants.
       virtual void
       parse_parameters(ParameterHandler &prm) = 0;
+
+      /**
+       * Entries of the model's subsection (paths relative to it) that have
+       * no effect with the parameters read, e.g. the bulk modulus when the
+       * material is given by Young's modulus and Poisson's ratio; the
+       * simulator refuses them when set (Problems::ProblemType::
+       * unused_entries()). Default: none.
+       */
+      virtual std::vector<UnusedEntry>
+      unused_entries() const;
 
       /**
        * Whether forces depend on the neighbours' weighted volumes and
@@ -148,6 +160,14 @@ namespace PeriDEAL
       virtual double
       density() const;
 
+      /**
+       * The entry of the model's subsection that sets its stiffness, and
+       * its value as given (e.g. {"Young's modulus", "1e308"}), for
+       * messages about the scale of the model; empty where there is none.
+       */
+      virtual std::pair<std::string, std::string>
+      stiffness_entry() const;
+
       static std::string
       family_name();
     };
@@ -170,6 +190,11 @@ namespace PeriDEAL
       double shear = 0;
       /// In 2D: plane stress (true) or plane strain (false).
       bool plane_stress = false;
+      /**
+       * The entry that sets the stiffness ("Young's modulus", or the larger
+       * of "Bulk modulus" and "Shear modulus") and its value as given.
+       */
+      std::pair<std::string, std::string> stiffness_entry;
 
       double
       youngs_modulus() const;
@@ -208,6 +233,11 @@ namespace PeriDEAL
       void
       parse_parameters(ParameterHandler &prm) override;
 
+      /// The pair of elastic constants that 'Elastic constants' does not
+      /// select.
+      std::vector<UnusedEntry>
+      unused_entries() const override;
+
       double
       influence(const double r, const double horizon) const override;
 
@@ -221,6 +251,9 @@ namespace PeriDEAL
 
       double
       density() const override;
+
+      std::pair<std::string, std::string>
+      stiffness_entry() const override;
 
       double
       bulk_modulus() const override;
@@ -247,9 +280,12 @@ namespace PeriDEAL
       double                             given_critical_stretch = 0;
       double                             fracture_energy        = 0;
       double                             mass_density           = 1;
+      /// Whether 'Elastic constants' selects the bulk and shear modulus.
+      bool given_as_moduli = false;
     };
   } // namespace Models
 
+  extern template class PluginRegistry<Models::Model<1>>;
   extern template class PluginRegistry<Models::Model<2>>;
   extern template class PluginRegistry<Models::Model<3>>;
 } // namespace PeriDEAL

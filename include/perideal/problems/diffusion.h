@@ -13,7 +13,10 @@
 #include <perideal/operators/diffusion_operator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
+#include <perideal/problems/time_loop.h>
 
+#include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -49,6 +52,11 @@ namespace PeriDEAL
      *   along listed boundary ids ('Boundary concentration', a function of
      *   x and t); fluxes through listed boundaries as sources in a layer
      *   (flux divided by the layer thickness); a source S(x, t).
+     * - **Checks** (Problems::TimeLoop and its companions): the step
+     *   count in 64 bits and at most 'Maximum number of steps', every
+     *   explicit step within the bound (the model's too), an 'Output
+     *   interval' of at least one step; a non-finite initial
+     *   concentration, source, flux or boundary value named by its entry.
      * - **Output.** PVTU with a PVD time series (concentration, error);
      *   a CSV of time, total amount, extrema and the error against an
      *   analytical solution (relative l2 norm, paper Eq. 66, over the free
@@ -66,6 +74,19 @@ namespace PeriDEAL
 
       void
       check_input(const Simulator<dim> &simulator) const override;
+
+      /// The solution records and time series, and the history file.
+      std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const override;
+      /**
+       * The sections the diffusion problem never reads ('Boundary
+       * conditions', 'Analytical solution': it has its own), entries that
+       * its other entries switch off (the solver with explicit stepping,
+       * the time step of a steady state, layer settings without layers,
+       * ...), and the model's (Models::DiffusionModel::unused_entries()).
+       */
+      std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const override;
 
       void
       run(Simulator<dim> &simulator) override;
@@ -161,9 +182,43 @@ namespace PeriDEAL
       void
       print_progress_line(Simulator<dim> &simulator);
 
-      /// Stop naming the step and node when a value is not finite.
+      /// Stop naming the step and node when a value is not finite, or the
+      /// entry when an input value was not (collective).
       void
-      check_finite(Simulator<dim> &simulator) const;
+      check_finite(Simulator<dim> &simulator);
+
+      /// "the linear solve of step 3 (t = 0.003)", or "the steady-state
+      /// solve" (diffusion_checks.cc, as the three functions below).
+      std::string
+      solve_label() const;
+
+      /**
+       * Before a linear solve: stop, on every process, when its right-hand
+       * side @p lifted (@p b with the prescribed values lifted) or its
+       * initial guess @p x is not finite, naming the entry that made it so
+       * (the source, the boundary flux or concentration, the initial
+       * concentration) with the node and the time, or else the step. A
+       * Krylov method would otherwise "converge" on it: deal.II's SolverCG
+       * returns without an error when the first residual is NaN, and the
+       * field would stay as it was.
+       */
+      void
+      check_solve_input(Simulator<dim>   &simulator,
+                        const VectorType &b,
+                        const VectorType &lifted,
+                        const VectorType &x) const;
+
+      /**
+       * After a linear solve from finite data: stop, on every process, when
+       * the solver did not reach @p converged (with the last residual
+       * @p residual, NaN: it stopped at its first check) or the solution
+       * @p x is not finite; the system overflowed.
+       */
+      void
+      check_solve_result(Simulator<dim>   &simulator,
+                         const bool        converged,
+                         const double      residual,
+                         const VectorType &x) const;
 
       /// What the diffusion model works on (after setup()).
       Models::DiffusionSetup<dim>
@@ -189,7 +244,17 @@ namespace PeriDEAL
       double dirichlet_thickness = 1, flux_thickness = 1;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial, source,
         boundary_value, boundary_flux, analytical;
+      /// The 'Function expression' of each function subsection, for
+      /// messages.
+      std::map<std::string, std::string> expressions;
       bool         with_source = true, with_flux = false, compare = false;
+      /// The function entries, for messages.
+      FunctionEntry initial_entry, source_entry, boundary_value_entry,
+        boundary_flux_entry, analytical_entry;
+      /// Step count and output schedule; non-finite values (the
+      /// evaluations of const functions record into it).
+      TimeLoop            time_loop;
+      mutable FiniteCheck finite_check;
       unsigned int output_every_steps  = 0;
       double       output_interval     = 0;
       unsigned int history_every_steps = 10;
@@ -233,8 +298,8 @@ namespace PeriDEAL
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    laplacian;
       std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
       double       time = 0, dt = 0, dt_bound = 0, radius_estimate = 0;
-      unsigned int step_number = 0, n_steps = 0;
-      unsigned int last_iterations = 0, total_iterations = 0;
+      std::uint64_t step_number = 0, n_steps = 0;
+      unsigned int  last_iterations = 0, total_iterations = 0;
       double       last_progress = 0, next_output_time = 0, loop_start = 0;
       std::vector<std::string>                    model_columns;
       std::vector<std::vector<double>>            history;

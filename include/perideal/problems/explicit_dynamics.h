@@ -14,7 +14,11 @@
 #include <perideal/operators/bond_operator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
+#include <perideal/problems/time_loop.h>
 
+#include <array>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -49,8 +53,15 @@ namespace PeriDEAL
      * - **Set-up.** Initial displacement and velocity (functions); the
      *   Dirichlet layers of 'Boundary conditions' prescribe the displacement
      *   or the velocity (function of x and t); body forces and tractions of
-     *   'Boundary conditions' (at t = 0) scaled by 'Load history' g(t);
+     *   'Boundary conditions', evaluated at each step's time when they use
+     *   t (once otherwise), times the optional factor 'Load history' g(t);
      *   pre-cracks (Discretization::PreCracks) and no-fail boxes.
+     * - **Checks** (Problems::TimeLoop and its companions): the step
+     *   count in 64 bits and at most 'Maximum number of steps', every step
+     *   taken within the bound, an 'Output interval' of at least one step;
+     *   a non-finite initial field, prescribed value or load history named
+     *   by its entry; the energy balance may not rise ('Energy balance
+     *   tolerance').
      * - **Output.** PVTU every N steps or every interval of time with a PVD
      *   time series (displacement, velocity, damage, broken bonds); a CSV
      *   of time, kinetic and elastic energy, external work and broken bonds;
@@ -70,6 +81,21 @@ namespace PeriDEAL
 
       void
       check_input(const Simulator<dim> &simulator) const override;
+
+      /**
+       * The solution records and time series, the energy file, and the
+       * checkpoint directories (<Output/Directory>/checkpoint, .new, .old:
+       * reserved whether or not this run writes checkpoints, since a
+       * resumed run reads them).
+       */
+      std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const override;
+      /// The entries that have no effect on this run: those of
+      /// 'Boundary conditions' (BoundaryConditions::unused_entries()), the
+      /// 'Analytical solution', and own entries that the others switch off
+      /// (e.g. 'Safety factor' with a given 'Time step').
+      std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const override;
 
       void
       run(Simulator<dim> &simulator) override;
@@ -116,6 +142,15 @@ namespace PeriDEAL
                        const double    t,
                        const double    dt);
 
+      /**
+       * Evaluate the loads that depend on time at @p t into `load` (the
+       * constant part plus the forces at the load sites), unless they are
+       * already at @p t; stops with the entry, the time and the point named
+       * where a force is not finite. Collective when there are such loads.
+       */
+      void
+      update_load(Simulator<dim> &simulator, const double t);
+
       /// Forces at the current u, bond failure committed; the
       /// acceleration of the free DoFs. With @p with_energy the elastic
       /// energy of this state comes from the same pass over the bonds
@@ -153,14 +188,53 @@ namespace PeriDEAL
       write_checkpoint(Simulator<dim> &simulator);
 
       /// Read what write_checkpoint() wrote (same input, any number of
-      /// processes: nodes are keyed by position). Collective.
+      /// processes: nodes are keyed by position). Collective. Refuses a
+      /// checkpoint written with another input (the entry that differs is
+      /// named, with both values) and a corrupt one (checksum, sizes and
+      /// counts checked against the file and the mesh before anything is
+      /// allocated), on every process alike.
       void
       read_checkpoint(Simulator<dim> &simulator);
 
-      /// Stop with the step and node named when a value is not finite
+      /**
+       * One quantity that defines the state a checkpoint holds: an input
+       * entry ('Material model/bond-based/Young's modulus') with its value
+       * as written, or a property of the discretisation ("number of nodes",
+       * "hash of the node positions and volumes") with @p hint naming the
+       * entries it comes from.
+       */
+      struct CheckpointKey
+      {
+        std::string name, value;
+        bool        is_entry = true;
+        std::string hint;
+      };
+
+      /// Read 'Overwrite checkpoint' and record the entries that define the
+      /// state (CheckpointKey) from the whole parameter tree: the model and
+      /// its constants, the horizon, the partial volumes, the mesh, the
+      /// failure parameters and the columns of the energy file.
+      void
+      parse_checkpoint_parameters(ParameterHandler &prm);
+
+      /// The entries of parse_checkpoint_parameters() and the properties of
+      /// this run's discretisation (mesh, horizon, bonds, critical stretch,
+      /// energy columns, time step). Collective (computed once).
+      const std::vector<CheckpointKey> &
+      checkpoint_keys(Simulator<dim> &simulator);
+
+      /// Before a run without 'Resume from checkpoint' writes anything:
+      /// refuse when its output directory holds a checkpoint further in
+      /// time than the first one this run would write (which would replace
+      /// it), unless 'Overwrite checkpoint' is set. Collective.
+      void
+      check_checkpoint_overwrite(Simulator<dim> &simulator) const;
+
+      /// Stop with the step and node named when a value is not finite,
+      /// or with the entry named when an input value was not
       /// (collective).
       void
-      check_finite(Simulator<dim> &simulator) const;
+      check_finite(Simulator<dim> &simulator);
 
       // Input.
       double       end_time            = 1;
@@ -177,12 +251,21 @@ namespace PeriDEAL
       unsigned int checkpoint_every_steps = 0;
       double       checkpoint_minutes     = 0;
       bool         resume                 = false;
+      bool         overwrite_checkpoint   = false;
       unsigned int steps_per_run          = 0;
       double       last_checkpoint        = 0;
       std::string  pre_crack_text, no_fail_text;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity;
       std::unique_ptr<FunctionParser<1>>              load_history;
+      /// The function entries, for messages.
+      FunctionEntry initial_displacement_entry, initial_velocity_entry,
+        load_history_entry, dirichlet_entry;
+      /// Step count and output schedule; non-finite values; the energy
+      /// balance.
+      TimeLoop             time_loop;
+      FiniteCheck          finite_check{" s"};
+      EnergyBalanceMonitor energy_monitor;
       Discretization::PreCracks<dim>                  pre_cracks;
       std::vector<BoundingBox<dim>>                   no_fail_boxes;
       std::vector<types::boundary_id>                 no_fail_ids;
@@ -190,6 +273,7 @@ namespace PeriDEAL
       double                   no_fail_thickness = 1;
       IO::CrackTipTracker<dim> crack_tip;
       std::vector<Point<dim>>  probe_points;
+      std::string              probe_text;
       /// Per probe: the local index of the nearest node if this process
       /// owns it, else invalid.
       std::vector<unsigned int> probe_nodes;
@@ -208,19 +292,38 @@ namespace PeriDEAL
       std::vector<double>     free_dof;          // 0 where prescribed, else 1
       bool                    with_load = false; // any load anywhere
       VectorType              u, v, a, force, previous_force, load, mass;
+      /// Loads that depend on t: whether there are any (on any process),
+      /// the part of `load` that does not, the sites of the others with
+      /// the local indices of their DoFs (invalid: constrained), and the
+      /// time `load` was last evaluated at (NaN: not yet).
+      bool       time_dependent_load = false;
+      VectorType constant_load;
+      std::vector<typename Boundary::BoundaryConditions<dim>::LoadSite>
+                                                 load_sites;
+      std::vector<std::array<unsigned int, dim>> load_site_indices;
+      double                                     load_time = 0;
+      /// The prescribed values when they do not depend on t (evaluated
+      /// once; empty until then).
+      std::vector<double> prescribed_values;
       double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
+      /// No step (64-bit step numbers: a count of steps never wraps).
+      static constexpr std::uint64_t no_step =
+        std::numeric_limits<std::uint64_t>::max();
       /// The elastic energy from the last compute_acceleration() with
-      /// energy, and the step it belongs to (invalid: none).
-      double       step_elastic_energy = 0;
-      unsigned int elastic_energy_step = numbers::invalid_unsigned_int;
-      unsigned int step_number = 0, n_steps = 0;
+      /// energy, and the step it belongs to (no_step: none).
+      double        step_elastic_energy = 0;
+      std::uint64_t elastic_energy_step = no_step;
+      std::uint64_t step_number = 0, n_steps = 0;
       double       external_work = 0, load_factor = 0;
       std::size_t  broken_bonds  = 0;
       double       last_progress = 0, next_output_time = 0;
       double       loop_start      = 0;
-      unsigned int loop_start_step = 0;
+      std::uint64_t loop_start_step = 0;
       std::vector<std::vector<double>>            energy_rows;
       std::vector<std::pair<double, std::string>> records;
+      /// The input entries that define the state (parse time), then, once
+      /// checkpoint_keys() ran, the properties of the discretisation.
+      std::vector<CheckpointKey> checkpoint_inputs, checkpoint_state_keys;
     };
   } // namespace Problems
 } // namespace PeriDEAL

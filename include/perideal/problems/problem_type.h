@@ -3,9 +3,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <perideal/base/input_checks.h>
 #include <perideal/base/plugin_registry.h>
+#include <perideal/io/output_names.h>
 
 #include <string>
+#include <vector>
 
 namespace PeriDEAL
 {
@@ -53,6 +56,30 @@ namespace PeriDEAL
       check_input(const Simulator<dim> &simulator) const;
 
       /**
+       * Every name under which a run of this problem type writes, besides
+       * the simulator's own ('Output/Summary file', 'Output/Node data
+       * file'), so that the simulator can refuse two outputs that meet
+       * before the run starts (IO::check_output_names()). Default: the
+       * solution records of 'Output'.
+       */
+      virtual std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const;
+
+      /**
+       * The entries of the whole input that have no effect on this run as
+       * configured (called after check_input()), e.g. a time step's safety
+       * factor when the step is given, or a section the problem type never
+       * reads. The simulator refuses a run whose input sets one of them to
+       * a value other than its default, naming the entry, its value and
+       * the reason given here. The material model's own rules and the
+       * sections of 'Material model' and 'Linear solver' (by
+       * uses_material_model() and uses_linear_solver()) are added by the
+       * simulator. Default: none.
+       */
+      virtual std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const;
+
+      /**
        * Run the problem on the set-up of @p simulator: the mesh and the
        * node set exist; the problem builds bonds, operators, solves or
        * steps, and writes its output and its part of the run summary.
@@ -96,6 +123,7 @@ namespace PeriDEAL
     using ProblemTypeRegistry = PluginRegistry<ProblemType<dim>>;
   } // namespace Problems
 
+  extern template class PluginRegistry<Problems::ProblemType<1>>;
   extern template class PluginRegistry<Problems::ProblemType<2>>;
   extern template class PluginRegistry<Problems::ProblemType<3>>;
 } // namespace PeriDEAL

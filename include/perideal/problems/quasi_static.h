@@ -24,12 +24,16 @@ namespace PeriDEAL
      * nodes`), sets it up and solves with it, then compares with the
      * analytical solution when one is given and writes PVTU output and the
      * per-node CSV. It never branches on the treatment.
+     *
+     * The functions of 'Boundary conditions' and the analytical solution
+     * are evaluated at the time 'quasi-static/Time' (default 1, the end of
+     * a unit load ramp), which the run's log states.
      */
     template <int dim>
     class QuasiStatic : public ProblemType<dim>
     {
     public:
-      /// No entries of its own yet.
+      /// 'Time', at which the loads are evaluated.
       static void
       declare_parameters(ParameterHandler &prm);
 
@@ -38,6 +42,12 @@ namespace PeriDEAL
 
       void
       check_input(const Simulator<dim> &simulator) const override;
+
+      /// Those of 'Boundary conditions', the failure and inertia entries
+      /// of the material model, and the analytical displacement without a
+      /// comparison.
+      std::vector<UnusedEntry>
+      unused_entries(const Simulator<dim> &simulator) const override;
 
       void
       run(Simulator<dim> &simulator) override;
@@ -55,6 +65,8 @@ namespace PeriDEAL
       /// The system built by the boundary treatment.
       std::unique_ptr<Boundary::DiscreteSystem<dim>> system;
       TrilinosWrappers::MPI::Vector                  displacement;
+      /// 'Time'.
+      double load_time = 1;
     };
   } // namespace Problems
 } // namespace PeriDEAL

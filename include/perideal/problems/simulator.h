@@ -209,12 +209,28 @@ namespace PeriDEAL
       const Functions::ParsedFunction<dim> *
       get_analytical_solution() const;
 
+      /**
+       * Evaluate the functions of the shared set-up that may depend on
+       * time (those of 'Boundary conditions' and the analytical
+       * displacement) at time @p t from now on.
+       */
+      void
+      set_time(const double t);
+
       const IO::SolutionOutput<dim> &
       get_output() const;
 
       /// The per-node CSV file ('Output/Node data file'); may be empty.
       const std::string &
       get_node_data_file() const;
+
+      /**
+       * The entry of the material model that sets its stiffness, as
+       * 'Material model/<model>/<entry>', and its value as given; for
+       * messages about a stiffness out of the range of doubles.
+       */
+      std::pair<std::string, std::string>
+      get_stiffness_entry() const;
 
       RunSummary &
       get_summary();
@@ -242,6 +258,34 @@ namespace PeriDEAL
 
       void
       write_summary_file() const;
+
+      /**
+       * Refuse a material model whose bond stiffness at this horizon is
+       * not a finite number (a modulus such as 1e308 overflows once divided
+       * by a power of the horizon), naming the modulus; otherwise every
+       * operator, bound and residual turns NaN or Inf and the failure is
+       * reported far from its cause.
+       */
+      void
+      check_material_scale() const;
+
+      /**
+       * Refuse output names that meet (IO::check_output_names()): the
+       * problem type's, the summary and node data files, and the mesh file
+       * read. Collective.
+       */
+      void
+      check_output_names() const;
+
+      /**
+       * Refuse entries that @p prm sets to a value other than their
+       * default where they have no effect on this run (those that the
+       * problem type, the material model and the boundary conditions list,
+       * and the sections of a model or solver the problem type does not
+       * use): each would otherwise be ignored without a word.
+       */
+      void
+      check_unused_entries(const ParameterHandler &prm) const;
 
       const MPI_Comm     communicator;
       ConditionalOStream pcout;

@@ -107,6 +107,7 @@ namespace PeriDEAL
 
 namespace PeriDEAL
 {
+  extern template class PluginRegistry<Quadrature::PartialVolume<1>>;
   extern template class PluginRegistry<Quadrature::PartialVolume<2>>;
   extern template class PluginRegistry<Quadrature::PartialVolume<3>>;
 } // namespace PeriDEAL

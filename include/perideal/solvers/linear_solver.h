@@ -132,6 +132,31 @@ namespace PeriDEAL
       unsigned int smoother_sweeps  = 2;
       double       aggregation      = 1e-4;
     };
+
+    namespace internal
+    {
+      /**
+       * Stop, naming @p method, when the right-hand side (of norm
+       * @p rhs_norm) holds NaN or Inf: a Krylov method would stop at once
+       * (deal.II's CG even without an error) and a direct one returns NaN.
+       * The loads and prescribed values are checked where they are
+       * evaluated, so what remains is an overflow of the lifting.
+       */
+      void
+      check_finite_rhs(const double rhs_norm, const std::string &method);
+
+      /**
+       * Stop, naming @p method, when the solve did not end in success
+       * (@p converged false with the last residual @p last_residual: a
+       * solver that stops at its first check returns without an error) or
+       * the residual of its solution, @p relative_residual, is not finite.
+       */
+      void
+      check_solve_result(const bool         converged,
+                         const double       last_residual,
+                         const double       relative_residual,
+                         const std::string &method);
+    } // namespace internal
   } // namespace Solvers
 } // namespace PeriDEAL
 

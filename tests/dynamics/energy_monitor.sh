@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Usage: energy_monitor.sh PERIDEAL CRACK_LPS_3D.prm NPROCS
+#
+# Kind: assertion against a physical law (an energy balance that broken
+# bonds can only lower). The state-based fracture run of crack_lps_3d.prm
+# near incompressibility (nu = 0.4999999) makes energy when bonds break
+# (doc/explicit-dynamics.md, "LPS near incompressibility"): its balance
+# rose from 0.0055 J to 9e4 J and the run exited 0 (issue 26, class 10).
+# The energy monitor must stop it with a clear error naming the step and
+# the entry to change, and leave the output it wrote before complete; with
+# 'Allow energy growth = true' the same run must warn exactly once.
+# The same input at nu = 0.3 runs to the end (dynamics/crack_lps_3d).
+set -u
+perideal="$1"; input="$2"; nprocs="$3"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+work="$(pwd)/energy_monitor.np${nprocs}"
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+
+grep -q "set Poisson's ratio = 0.3$" "$input" || { echo "FAIL: $input has no 'Poisson's ratio = 0.3' line"; exit 1; }
+sed -e "s/set Poisson's ratio = 0.3$/set Poisson's ratio = 0.4999999/" \
+    -e 's/set End time = .*/set End time = 2.5e-6/' "$input" > nu.prm
+
+out=$(timeout 240 mpirun --oversubscribe -np "$nprocs" "$perideal" nu.prm 2>&1); rc=$?
+[ $rc -ne 0 ] && [ $rc -ne 124 ] || { echo "$out" | tail -5; fail "exit code $rc: the run that makes energy was not stopped"; }
+grep -qE "The energy balance \(kinetic \+ elastic energy - external work\) rose to .* at step [0-9]+" <<<"$out" \
+  || { echo "$out" | tail -5; fail "no energy-balance message"; }
+grep -qF "'explicit dynamics/Energy balance tolerance' = 0.1" <<<"$out" || fail "the message does not name the tolerance entry"
+dir=$(sed -n 's/^ *set Directory *= *//p' nu.prm); dir=${dir:-output}
+[ -f "$dir/energies.csv" ] || fail "the energy history written before is gone"
+ls "$dir"/*.tmp > /dev/null 2>&1 && fail "temporary files remain"
+
+sed -i 's/set End time = 2.5e-6/set End time = 2.5e-6\n  set Allow energy growth = true/' nu.prm
+rm -rf "$dir"
+out=$(timeout 240 mpirun --oversubscribe -np "$nprocs" "$perideal" nu.prm 2>&1); rc=$?
+[ "$(grep -c "Warning: The energy balance" <<<"$out")" -eq 1 ] || { echo "$out" | tail -5; fail "'Allow energy growth = true': not exactly one warning"; }
+
+if [ "$failures" -eq 0 ]; then echo "OK: the energy monitor stops a run that makes energy"; else exit 1; fi
