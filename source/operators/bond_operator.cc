@@ -16,8 +16,8 @@ namespace PeriDEAL
     {
       // Work items per task of the thread pool: runs of the stencil loop
       // and nodes of the list loop.
-      constexpr unsigned int chunk_grain = 4;
-      constexpr unsigned int node_grain  = 256;
+      using LoopLayout::chunk_grain;
+      using LoopLayout::node_grain;
 
       template <int dim>
       double
@@ -79,15 +79,8 @@ namespace PeriDEAL
                              "numbered consecutively (FESystem of "
                              "FE_DGQ(0) without renumbering)."));
 
-      // Slots: the lattice box on a uniform grid, unless it is much larger
-      // than the node set (a scattered partition); node indices otherwise.
+      LoopLayout::choose_slots(*lists, n, use_lattice, n_slots, slot);
       const auto &lattice = lists->lattice();
-      use_lattice         = lattice.is_uniform() && !lists->stencil().empty() &&
-                    lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
-      slot.resize(n);
-      n_slots = use_lattice ? lattice.n_slots() : n;
-      for (unsigned int i = 0; i < n; ++i)
-        slot[i] = use_lattice ? lattice.slot(i) : i;
 
       // Reference weighted volumes (every bond, broken or not).
       const double h  = lattice.spacing();
@@ -764,7 +757,8 @@ namespace PeriDEAL
                     const ListBond   &bond = list_bonds[b];
                     const std::size_t sj   = bond.neighbor_slot;
                     const double      e    = BondKernel::linear_extension<dim>(
-                      bond.n, [&](const unsigned int d) {
+                      bond.n,
+                      [&](const unsigned int d) {
                         return u_slot[d][sj] - u_slot[d][si];
                       });
                     theta += bond.g * e;
@@ -821,15 +815,20 @@ namespace PeriDEAL
                             eta[d] = uj[d][l] - ui[d][l];
                           const double e =
                             BondKernel::linear_extension<dim>(nk, eta);
-                          const double t = BondKernel::pair_force(
-                            a, ti[l], tj[l], b, si[l], sj[l], e);
+                          const double t = BondKernel::pair_force(a,
+                                                                  ti[l],
+                                                                  tj[l],
+                                                                  b,
+                                                                  si[l],
+                                                                  sj[l],
+                                                                  e);
                           for (unsigned int d = 0; d < dim; ++d)
                             force[d][l] += t * nk[d];
                         }
                     }
                   else
                     {
-                      // Bond-based: s = 1 at every node.
+                    // Bond-based: s = 1 at every node.
 #pragma omp simd
                       for (unsigned int l = 0; l < len; ++l)
                         {
@@ -887,7 +886,8 @@ namespace PeriDEAL
                     const ListBond   &bond = list_bonds[b];
                     const std::size_t sj   = bond.neighbor_slot;
                     const double      e    = BondKernel::linear_extension<dim>(
-                      bond.n, [&](const unsigned int d) {
+                      bond.n,
+                      [&](const unsigned int d) {
                         return u_slot[d][sj] - u_slot[d][si];
                       });
                     const double t = BondKernel::pair_force(bond.a,
@@ -1034,18 +1034,21 @@ namespace PeriDEAL
                     for (unsigned int c = 0; c < dim; ++c)
                       {
                         const double n_c = stencil.n[c][k];
-                        diag[c] += BondKernel::extension_stiffness(
-                                     stencil.b[k], s_i, s_j) *
+                        diag[c] += BondKernel::extension_stiffness(stencil.b[k],
+                                                                   s_i,
+                                                                   s_j) *
                                    n_c * n_c;
                         if (state_based)
                           {
                             G[c] += stencil.g[k] * m0 / m[i] * n_c;
-                            a_sum[c] += BondKernel::dilatation_stiffness(
-                                          stencil.a[k], s_i) *
-                                        n_c;
-                            diag[c] += BondKernel::dilatation_stiffness(
-                                         stencil.a[k], s_j) *
-                                       n_c * n_c * stencil.g[k] * m0 / m[j];
+                            a_sum[c] +=
+                              BondKernel::dilatation_stiffness(stencil.a[k],
+                                                               s_i) *
+                              n_c;
+                            diag[c] +=
+                              BondKernel::dilatation_stiffness(stencil.a[k],
+                                                               s_j) *
+                              n_c * n_c * stencil.g[k] * m0 / m[j];
                           }
                       }
                   };
@@ -1077,10 +1080,9 @@ namespace PeriDEAL
             const double         alpha = model->dilatation_constant(r, horizon);
             const double         beta  = model->extension_constant(r, horizon);
             for (unsigned int c = 0; c < dim; ++c)
-              diag[c] += BondKernel::extension_stiffness(volume * w * beta,
-                                                         s_i,
-                                                         s_j) *
-                         n[c] * n[c];
+              diag[c] +=
+                BondKernel::extension_stiffness(volume * w * beta, s_i, s_j) *
+                n[c] * n[c];
             if (!state_based)
               return;
             G += dim / m[i] * model->influence(r, horizon) * r * w * n;

@@ -28,8 +28,8 @@ namespace PeriDEAL
     {
       using Fused = BondKernel::FusedArithmetic;
 
-      constexpr unsigned int chunk_grain = 4;
-      constexpr unsigned int node_grain  = 256;
+      using LoopLayout::chunk_grain;
+      using LoopLayout::node_grain;
 
       /// Consecutive slots and the stencil offsets to visit for them
       /// (index == nullptr: all of them); with broken bonds, the mask words
@@ -249,11 +249,12 @@ namespace PeriDEAL
                           for (unsigned int d = 0; d < dim; ++d)
                             eta[d] = uj[d][l] - ui[d][l];
                           const double e =
-                            BondKernel::extension<finite_kinematics, dim, Fused>(
-                              xi, nk, r, eta);
+                            BondKernel::extension<finite_kinematics,
+                                                  dim,
+                                                  Fused>(xi, nk, r, eta);
                           const bool below =
                             BondKernel::is_intact(e, inv_r, ci[l], cj[l]);
-                          bool       gone  = false;
+                          bool gone = false;
                           if constexpr (with_mask)
                             gone = gone_lane[l] != 0;
                           const bool intact = below && !gone;
@@ -332,15 +333,14 @@ namespace PeriDEAL
                                      const double     *n,
                                      const double      r,
                                      const double      g) {
-                const double e =
-                  BondKernel::extension<finite_kinematics, dim>(
-                    xi, n, r, [&](const unsigned int d) {
-                      return u_slot[d][sj] - u_slot[d][si];
-                    });
-                if (BondKernel::is_intact(e,
-                                          1. / r,
-                                          s0_slot[si],
-                                          s0_slot[sj]))
+                const double e = BondKernel::extension<finite_kinematics, dim>(
+                  xi,
+                  n,
+                  r,
+                  [&](const unsigned int d) {
+                    return u_slot[d][sj] - u_slot[d][si];
+                  });
+                if (BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
                   theta += g * e;
                 else
                   found.emplace_back(i, node_of_slot(sj));
@@ -479,18 +479,26 @@ namespace PeriDEAL
                             eta[d] = uj[d][l] - ui[d][l];
                           const auto bond =
                             BondKernel::deform<finite_kinematics, dim, Fused>(
-                              xi, nk, r, eta);
+                              xi,
+                              nk,
+                              r,
+                              eta);
                           const double e = bond.e;
                           const bool   below =
                             BondKernel::is_intact(e, inv_r, ci[l], cj[l]);
-                          bool       gone  = false;
+                          bool gone = false;
                           if constexpr (with_mask)
                             gone = gone_lane[l] != 0;
                           const bool intact = below && !gone;
                           double     t;
                           if constexpr (with_state)
-                            t = BondKernel::pair_force<Fused>(
-                              a, ti[l], tj[l], b, si[l], sj[l], e);
+                            t = BondKernel::pair_force<Fused>(a,
+                                                              ti[l],
+                                                              tj[l],
+                                                              b,
+                                                              si[l],
+                                                              sj[l],
+                                                              e);
                           else
                             t = BondKernel::bond_based_pair_force(b, e);
                           const double ty = intact ? t * bond.scale : 0.;
@@ -499,8 +507,7 @@ namespace PeriDEAL
                             force[d][l] =
                               Fused::mul_add(ty, bond.y[d], force[d][l]);
                           if constexpr (with_energy)
-                            energy[l] +=
-                              intact ? BondKernel::energy(b, e) : 0.;
+                            energy[l] += intact ? BondKernel::energy(b, e) : 0.;
                           failed[l] = (below || gone) ? 0. : 1.;
                           n_failed += (below || gone) ? 0. : 1.;
                         }
@@ -579,27 +586,26 @@ namespace PeriDEAL
                                      const double      a,
                                      const double      b) {
                 const auto bond = BondKernel::deform<finite_kinematics, dim>(
-                  xi, n, r, [&](const unsigned int d) {
+                  xi,
+                  n,
+                  r,
+                  [&](const unsigned int d) {
                     return u_slot[d][sj] - u_slot[d][si];
                   });
                 const double e = bond.e;
-                if (!BondKernel::is_intact(e,
-                                           1. / r,
-                                           s0_slot[si],
-                                           s0_slot[sj]))
+                if (!BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
                   {
                     found.emplace_back(i, node_of_slot(sj));
                     return;
                   }
-                const double t =
-                  sb ? BondKernel::pair_force(a,
-                                              t_slot[si],
-                                              t_slot[sj],
-                                              b,
-                                              s_slot[si],
-                                              s_slot[sj],
-                                              e) :
-                       BondKernel::bond_based_pair_force(b, e);
+                const double t = sb ? BondKernel::pair_force(a,
+                                                             t_slot[si],
+                                                             t_slot[sj],
+                                                             b,
+                                                             s_slot[si],
+                                                             s_slot[sj],
+                                                             e) :
+                                                    BondKernel::bond_based_pair_force(b, e);
                 for (unsigned int d = 0; d < dim; ++d)
                   f[d] += t * bond.scale * bond.y[d];
                 if constexpr (with_energy)
@@ -622,48 +628,54 @@ namespace PeriDEAL
                   // of the state-based terms. Inlined, so that the sums and
                   // invariants are not read through the closure in the loop
                   // (which keeps it from vectorising).
-                  const auto bonds = [&](auto state_based_tag)
-                                       PERIDEAL_BOND_KERNEL_INLINE_LAMBDA {
-                    constexpr bool with_state =
-                      decltype(state_based_tag)::value;
+                  const auto bonds =
+                    [&](auto state_based_tag)
+                      PERIDEAL_BOND_KERNEL_INLINE_LAMBDA {
+                        constexpr bool with_state =
+                          decltype(state_based_tag)::value;
 #pragma omp simd reduction(+ : f0, f1, f2, en, n_failed)
-                    for (std::size_t b = first; b < last; ++b)
-                      {
-                        const unsigned int k  = index[b];
-                        const std::size_t  sj = si + offset[k];
-                        double             xi[dim], n[dim], eta[dim];
-#pragma GCC unroll 3
-                        for (unsigned int d = 0; d < dim; ++d)
+                        for (std::size_t b = first; b < last; ++b)
                           {
-                            xi[d]  = xs[d][k];
-                            n[d]   = ns[d][k];
-                            eta[d] = us[d][sj] - ui[d];
+                            const unsigned int k  = index[b];
+                            const std::size_t  sj = si + offset[k];
+                            double             xi[dim], n[dim], eta[dim];
+#pragma GCC unroll 3
+                            for (unsigned int d = 0; d < dim; ++d)
+                              {
+                                xi[d]  = xs[d][k];
+                                n[d]   = ns[d][k];
+                                eta[d] = us[d][sj] - ui[d];
+                              }
+                            const auto bond =
+                              BondKernel::deform<finite_kinematics, dim>(xi,
+                                                                         n,
+                                                                         rs[k],
+                                                                         eta);
+                            const double e = bond.e;
+                            const bool   intact =
+                              BondKernel::is_intact(e, inv_rs[k], c_i, s0s[sj]);
+                            double t;
+                            if constexpr (with_state)
+                              t = BondKernel::pair_force(as[k],
+                                                         ti,
+                                                         ts[sj],
+                                                         bs[k],
+                                                         s_i,
+                                                         ss[sj],
+                                                         e);
+                            else
+                              t = BondKernel::bond_based_pair_force(bs[k], e);
+                            const double ty = intact ? t * bond.scale : 0.;
+                            f0 += ty * bond.y[0];
+                            f1 += ty * bond.y[1];
+                            if constexpr (dim == 3)
+                              f2 += ty * bond.y[dim - 1];
+                            if constexpr (with_energy)
+                              en += intact ? BondKernel::energy(bs[k], e) : 0.;
+                            flag[b - first] = intact ? 0. : 1.;
+                            n_failed += intact ? 0. : 1.;
                           }
-                        const auto bond =
-                          BondKernel::deform<finite_kinematics, dim>(xi,
-                                                                     n,
-                                                                     rs[k],
-                                                                     eta);
-                        const double e = bond.e;
-                        const bool   intact =
-                          BondKernel::is_intact(e, inv_rs[k], c_i, s0s[sj]);
-                        double t;
-                        if constexpr (with_state)
-                          t = BondKernel::pair_force(
-                            as[k], ti, ts[sj], bs[k], s_i, ss[sj], e);
-                        else
-                          t = BondKernel::bond_based_pair_force(bs[k], e);
-                        const double ty = intact ? t * bond.scale : 0.;
-                        f0 += ty * bond.y[0];
-                        f1 += ty * bond.y[1];
-                        if constexpr (dim == 3)
-                          f2 += ty * bond.y[dim - 1];
-                        if constexpr (with_energy)
-                          en += intact ? BondKernel::energy(bs[k], e) : 0.;
-                        flag[b - first] = intact ? 0. : 1.;
-                        n_failed += intact ? 0. : 1.;
-                      }
-                  };
+                      };
                   if (sb)
                     bonds(std::true_type());
                   else
@@ -726,9 +738,9 @@ namespace PeriDEAL
         const auto eta = [&](const unsigned int d) {
           return u_slot[d][sj] - u_slot[d][si];
         };
-        const double e =
-          finite ? BondKernel::extension<true, dim>(xi, n, r, eta) :
-                   BondKernel::extension<false, dim>(xi, n, r, eta);
+        const double e = finite ?
+                               BondKernel::extension<true, dim>(xi, n, r, eta) :
+                               BondKernel::extension<false, dim>(xi, n, r, eta);
         // The force passes' test, so that the energy leaves out the bonds
         // that they leave out.
         if (fail && !BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
