@@ -56,6 +56,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/linear_peridynamic_operator.h>
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
@@ -398,8 +399,9 @@ namespace
         const Tensor<1, 3> &u_node = u[node];
         double              theta  = 0;
         for (std::size_t k = 0; k < bonds.size(); ++k)
-          theta +=
-            theta_factor[k] * (bonds[k].n * (u[node + stride[k]] - u_node));
+          theta += theta_factor[k] * Operators::BondKernel::linear_extension<3>(
+                                       bonds[k].n,
+                                       u[node + stride[k]] - u_node);
         return theta;
       };
 
@@ -411,7 +413,9 @@ namespace
           const Bond       &b       = bonds[j];
           const std::size_t node_j  = origin + stride[j];
           const double      theta_j = dilatation(node_j);
-          const double      e       = b.n * (u[node_j] - u[origin]);
+          const double      e =
+            Operators::BondKernel::linear_extension<3>(b.n,
+                                                       u[node_j] - u[origin]);
           const double a_i   = model.dilatation_coefficient(mi, b.r, m_ratio);
           const double a_j   = model.dilatation_coefficient(mj, b.r, m_ratio);
           const double b_sum = model.extension_coefficient(mi, b.r, m_ratio) +

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parallel.h>
 
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/bond_operator.h>
 
 #include <algorithm>
@@ -15,8 +16,8 @@ namespace PeriDEAL
     {
       // Work items per task of the thread pool: runs of the stencil loop
       // and nodes of the list loop.
-      constexpr unsigned int chunk_grain = 4;
-      constexpr unsigned int node_grain  = 256;
+      using LoopLayout::chunk_grain;
+      using LoopLayout::node_grain;
 
       template <int dim>
       double
@@ -78,15 +79,8 @@ namespace PeriDEAL
                              "numbered consecutively (FESystem of "
                              "FE_DGQ(0) without renumbering)."));
 
-      // Slots: the lattice box on a uniform grid, unless it is much larger
-      // than the node set (a scattered partition); node indices otherwise.
+      LoopLayout::choose_slots(*lists, n, use_lattice, n_slots, slot);
       const auto &lattice = lists->lattice();
-      use_lattice         = lattice.is_uniform() && !lists->stencil().empty() &&
-                    lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
-      slot.resize(n);
-      n_slots = use_lattice ? lattice.n_slots() : n;
-      for (unsigned int i = 0; i < n; ++i)
-        slot[i] = use_lattice ? lattice.slot(i) : i;
 
       // Reference weighted volumes (every bond, broken or not).
       const double h  = lattice.spacing();
@@ -719,10 +713,11 @@ namespace PeriDEAL
 #pragma omp simd
                   for (unsigned int l = 0; l < len; ++l)
                     {
-                      double sum = 0;
+                      double eta[dim];
                       for (unsigned int d = 0; d < dim; ++d)
-                        sum += gn[d] * (uj[d][l] - ui[d][l]);
-                      theta[l] += sum;
+                        eta[d] = uj[d][l] - ui[d][l];
+                      // g e with g folded into the direction.
+                      theta[l] += BondKernel::linear_extension<dim>(gn, eta);
                     }
                 }
               const double s = stencil.node_factor;
@@ -747,9 +742,11 @@ namespace PeriDEAL
                     {
                       const unsigned int k  = list_stencil_index[b];
                       const std::size_t  sj = si + stencil.slot_offset[k];
-                      double             e  = 0;
-                      for (unsigned int d = 0; d < dim; ++d)
-                        e += stencil.n[d][k] * (u_slot[d][sj] - u_slot[d][si]);
+                      const double       e  = BondKernel::linear_extension<dim>(
+                        [&](const unsigned int d) { return stencil.n[d][k]; },
+                        [&](const unsigned int d) {
+                          return u_slot[d][sj] - u_slot[d][si];
+                        });
                       theta += stencil.g[k] * e;
                     }
                   theta *= list_theta_scale[i];
@@ -759,9 +756,11 @@ namespace PeriDEAL
                   {
                     const ListBond   &bond = list_bonds[b];
                     const std::size_t sj   = bond.neighbor_slot;
-                    double            e    = 0;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
+                    const double      e    = BondKernel::linear_extension<dim>(
+                      bond.n,
+                      [&](const unsigned int d) {
+                        return u_slot[d][sj] - u_slot[d][si];
+                      });
                     theta += bond.g * e;
                   }
               t_slot[si] = s_slot[si] * theta;
@@ -811,26 +810,35 @@ namespace PeriDEAL
 #pragma omp simd
                       for (unsigned int l = 0; l < len; ++l)
                         {
-                          double e = 0;
+                          double eta[dim];
                           for (unsigned int d = 0; d < dim; ++d)
-                            e += nk[d] * (uj[d][l] - ui[d][l]);
-                          const double t =
-                            a * (ti[l] + tj[l]) + b * (si[l] + sj[l]) * e;
+                            eta[d] = uj[d][l] - ui[d][l];
+                          const double e =
+                            BondKernel::linear_extension<dim>(nk, eta);
+                          const double t = BondKernel::pair_force(a,
+                                                                  ti[l],
+                                                                  tj[l],
+                                                                  b,
+                                                                  si[l],
+                                                                  sj[l],
+                                                                  e);
                           for (unsigned int d = 0; d < dim; ++d)
                             force[d][l] += t * nk[d];
                         }
                     }
                   else
                     {
-                      // Bond-based: s = 1 at every node.
-                      const double b2 = 2 * b;
+                    // Bond-based: s = 1 at every node.
 #pragma omp simd
                       for (unsigned int l = 0; l < len; ++l)
                         {
-                          double e = 0;
+                          double eta[dim];
                           for (unsigned int d = 0; d < dim; ++d)
-                            e += nk[d] * (uj[d][l] - ui[d][l]);
-                          const double t = b2 * e;
+                            eta[d] = uj[d][l] - ui[d][l];
+                          const double e =
+                            BondKernel::linear_extension<dim>(nk, eta);
+                          const double t =
+                            BondKernel::bond_based_pair_force(b, e);
                           for (unsigned int d = 0; d < dim; ++d)
                             force[d][l] += t * nk[d];
                         }
@@ -857,12 +865,18 @@ namespace PeriDEAL
                   {
                     const unsigned int k  = list_stencil_index[b];
                     const std::size_t  sj = si + stencil.slot_offset[k];
-                    double             e  = 0;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      e += stencil.n[d][k] * (u_slot[d][sj] - u_slot[d][si]);
-                    const double t =
-                      stencil.a[k] * (t_slot[si] + t_slot[sj]) +
-                      stencil.b[k] * (s_slot[si] + s_slot[sj]) * e;
+                    const double       e  = BondKernel::linear_extension<dim>(
+                      [&](const unsigned int d) { return stencil.n[d][k]; },
+                      [&](const unsigned int d) {
+                        return u_slot[d][sj] - u_slot[d][si];
+                      });
+                    const double t = BondKernel::pair_force(stencil.a[k],
+                                                            t_slot[si],
+                                                            t_slot[sj],
+                                                            stencil.b[k],
+                                                            s_slot[si],
+                                                            s_slot[sj],
+                                                            e);
                     for (unsigned int d = 0; d < dim; ++d)
                       f[d] += t * stencil.n[d][k];
                   }
@@ -871,11 +885,18 @@ namespace PeriDEAL
                   {
                     const ListBond   &bond = list_bonds[b];
                     const std::size_t sj   = bond.neighbor_slot;
-                    double            e    = 0;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      e += bond.n[d] * (u_slot[d][sj] - u_slot[d][si]);
-                    const double t = bond.a * (t_slot[si] + t_slot[sj]) +
-                                     bond.b * (s_slot[si] + s_slot[sj]) * e;
+                    const double      e    = BondKernel::linear_extension<dim>(
+                      bond.n,
+                      [&](const unsigned int d) {
+                        return u_slot[d][sj] - u_slot[d][si];
+                      });
+                    const double t = BondKernel::pair_force(bond.a,
+                                                            t_slot[si],
+                                                            t_slot[sj],
+                                                            bond.b,
+                                                            s_slot[si],
+                                                            s_slot[sj],
+                                                            e);
                     for (unsigned int d = 0; d < dim; ++d)
                       f[d] += t * bond.n[d];
                   }
@@ -1013,13 +1034,21 @@ namespace PeriDEAL
                     for (unsigned int c = 0; c < dim; ++c)
                       {
                         const double n_c = stencil.n[c][k];
-                        diag[c] += stencil.b[k] * (s_i + s_j) * n_c * n_c;
+                        diag[c] += BondKernel::extension_stiffness(stencil.b[k],
+                                                                   s_i,
+                                                                   s_j) *
+                                   n_c * n_c;
                         if (state_based)
                           {
                             G[c] += stencil.g[k] * m0 / m[i] * n_c;
-                            a_sum[c] += stencil.a[k] * s_i * n_c;
-                            diag[c] += stencil.a[k] * s_j * n_c * n_c *
-                                       stencil.g[k] * m0 / m[j];
+                            a_sum[c] +=
+                              BondKernel::dilatation_stiffness(stencil.a[k],
+                                                               s_i) *
+                              n_c;
+                            diag[c] +=
+                              BondKernel::dilatation_stiffness(stencil.a[k],
+                                                               s_j) *
+                              n_c * n_c * stencil.g[k] * m0 / m[j];
                           }
                       }
                   };
@@ -1051,11 +1080,14 @@ namespace PeriDEAL
             const double         alpha = model->dilatation_constant(r, horizon);
             const double         beta  = model->extension_constant(r, horizon);
             for (unsigned int c = 0; c < dim; ++c)
-              diag[c] += volume * w * beta * (s_i + s_j) * n[c] * n[c];
+              diag[c] +=
+                BondKernel::extension_stiffness(volume * w * beta, s_i, s_j) *
+                n[c] * n[c];
             if (!state_based)
               return;
             G += dim / m[i] * model->influence(r, horizon) * r * w * n;
-            a_sum += volume * w * alpha * s_i * n;
+            a_sum +=
+              BondKernel::dilatation_stiffness(volume * w * alpha, s_i) * n;
             // g_ji: node j's bond back to i (weight w_ji), if it has one.
             double w_ji = 0;
             if (lists->has_full_stencil(j))
@@ -1070,7 +1102,9 @@ namespace PeriDEAL
             const double g_ji =
               dim / m[j] * model->influence(r, horizon) * r * w_ji;
             for (unsigned int c = 0; c < dim; ++c)
-              diag[c] += volume * w * alpha * s_j * n[c] * g_ji * n[c];
+              diag[c] +=
+                BondKernel::dilatation_stiffness(volume * w * alpha, s_j) *
+                n[c] * g_ji * n[c];
           });
           for (unsigned int c = 0; c < dim; ++c)
             diagonal.local_element(vector_index[i] + c) =

@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/base/collective_checks.h>
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/bond_operator.h>
 
 #include <Epetra_CrsGraph.h>
@@ -253,7 +254,7 @@ namespace PeriDEAL
               const double         a,
               const double         b) {
             const double s_j = s_slot[slot_j];
-            const double kb  = b * (s_i + s_j);
+            const double kb  = BondKernel::extension_stiffness(b, s_i, s_j);
             for (unsigned int p = 0; p < dim; ++p)
               for (unsigned int q = 0; q < dim; ++q)
                 {
@@ -263,12 +264,14 @@ namespace PeriDEAL
                 }
             if (!state_based)
               return;
-            double t[dim], G_j[dim] = {};
+            double       t[dim], G_j[dim] = {};
+            const double a_i = BondKernel::dilatation_stiffness(a, s_i);
+            const double a_j = BondKernel::dilatation_stiffness(a, s_j);
             for (unsigned int p = 0; p < dim; ++p)
               {
-                A[p] += a * s_i * n_ij[p];
+                A[p] += a_i * n_ij[p];
                 G_i[p] += g * n_ij[p];
-                t[p] = a * s_j * n_ij[p];
+                t[p] = a_j * n_ij[p];
               }
             const unsigned int j = node_of_slot(slot_j);
             if (on_full_stencil(j))
@@ -342,7 +345,8 @@ namespace PeriDEAL
                                     const double,
                                     const double,
                                     const double b) {
-                                  d += std::abs(b * (s_i + s_slot[slot_j])) *
+                                  d += std::abs(BondKernel::extension_stiffness(
+                                         b, s_i, s_slot[slot_j])) *
                                        n_ij[r] * n_ij[r];
                                 });
         return d > 0 ? d : 1.;
@@ -698,9 +702,14 @@ namespace PeriDEAL
                                     const double s_j = s_slot[slot_j];
                                     for (unsigned int c = 0; c < dim; ++c)
                                       {
-                                        row[c] += 2 * std::abs(b) *
-                                                  std::abs(s_i + s_j) *
-                                                  std::abs(nv[c]) * norm1;
+                                        // |b (s_i + s_j)| = |b| |s_i + s_j|
+                                        // to the bit.
+                                        row[c] +=
+                                          2 *
+                                          std::abs(
+                                            BondKernel::extension_stiffness(
+                                              b, s_i, s_j)) *
+                                          std::abs(nv[c]) * norm1;
                                         if (state_based)
                                           {
                                             row[c] += std::abs(a) *

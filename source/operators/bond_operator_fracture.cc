@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parallel.h>
 
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/bond_operator.h>
 
 #include <algorithm>
@@ -15,9 +16,9 @@
 // run starts depends on the partition, so a node's lane may be evaluated in
 // a loop's vector body on one partition and in its scalar remainder on
 // another; the compiler may fuse a multiply-add in one and not the other.
-// The lane loops therefore spell their multiply-adds out (mul_add), which
-// both paths round alike: a node's forces, and so its bond failures,
-// are bitwise the same on every partition.
+// The lane loops therefore spell their multiply-adds out
+// (BondKernel::FusedArithmetic), which both paths round alike: a node's
+// forces, and so its bond failures, are bitwise the same on every partition.
 
 namespace PeriDEAL
 {
@@ -25,22 +26,10 @@ namespace PeriDEAL
   {
     namespace
     {
-      /// a b + c, fused where the processor has a fast fused multiply-add
-      /// (std::fma, one rounding), else two roundings. Either way the
-      /// vector body and the scalar remainder of a lane loop round alike,
-      /// as this file is compiled without implicit contraction.
-      inline double
-      mul_add(const double a, const double b, const double c)
-      {
-#ifdef FP_FAST_FMA
-        return std::fma(a, b, c);
-#else
-        return a * b + c;
-#endif
-      }
+      using Fused = BondKernel::FusedArithmetic;
 
-      constexpr unsigned int chunk_grain = 4;
-      constexpr unsigned int node_grain  = 256;
+      using LoopLayout::chunk_grain;
+      using LoopLayout::node_grain;
 
       /// Consecutive slots and the stencil offsets to visit for them
       /// (index == nullptr: all of them); with broken bonds, the mask words
@@ -255,25 +244,17 @@ namespace PeriDEAL
 #pragma omp simd reduction(+ : n_failed)
                       for (unsigned int l = 0; l < len; ++l)
                         {
-                          double e = 0;
-                          if constexpr (finite_kinematics)
-                            {
-                              double length2 = 0;
+                          double eta[dim];
 #pragma GCC unroll 3
-                              for (unsigned int d = 0; d < dim; ++d)
-                                {
-                                  const double y =
-                                    xi[d] + (uj[d][l] - ui[d][l]);
-                                  length2 = mul_add(y, y, length2);
-                                }
-                              e = std::sqrt(length2) - r;
-                            }
-                          else
-#pragma GCC unroll 3
-                            for (unsigned int d = 0; d < dim; ++d)
-                              e = mul_add(nk[d], uj[d][l] - ui[d][l], e);
-                          const bool below = e * inv_r < std::min(ci[l], cj[l]);
-                          bool       gone  = false;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            eta[d] = uj[d][l] - ui[d][l];
+                          const double e =
+                            BondKernel::extension<finite_kinematics,
+                                                  dim,
+                                                  Fused>(xi, nk, r, eta);
+                          const bool below =
+                            BondKernel::is_intact(e, inv_r, ci[l], cj[l]);
+                          bool gone = false;
                           if constexpr (with_mask)
                             gone = gone_lane[l] != 0;
                           const bool intact = below && !gone;
@@ -352,22 +333,14 @@ namespace PeriDEAL
                                      const double     *n,
                                      const double      r,
                                      const double      g) {
-                double e = 0;
-                if constexpr (finite_kinematics)
-                  {
-                    double length2 = 0;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        const double y =
-                          xi[d] + (u_slot[d][sj] - u_slot[d][si]);
-                        length2 += y * y;
-                      }
-                    e = std::sqrt(length2) - r;
-                  }
-                else
-                  for (unsigned int d = 0; d < dim; ++d)
-                    e += n[d] * (u_slot[d][sj] - u_slot[d][si]);
-                if (e * (1. / r) < std::min(s0_slot[si], s0_slot[sj]))
+                const double e = BondKernel::extension<finite_kinematics, dim>(
+                  xi,
+                  n,
+                  r,
+                  [&](const unsigned int d) {
+                    return u_slot[d][sj] - u_slot[d][si];
+                  });
+                if (BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
                   theta += g * e;
                 else
                   found.emplace_back(i, node_of_slot(sj));
@@ -385,24 +358,16 @@ namespace PeriDEAL
                     {
                       const unsigned int k  = index[b];
                       const std::size_t  sj = si + offset[k];
-                      double             e  = 0;
-                      if constexpr (finite_kinematics)
-                        {
-                          double length2 = 0;
-#pragma GCC unroll 3
-                          for (unsigned int d = 0; d < dim; ++d)
-                            {
-                              const double y = xs[d][k] + (us[d][sj] - ui[d]);
-                              length2 += y * y;
-                            }
-                          e = std::sqrt(length2) - rs[k];
-                        }
-                      else
-#pragma GCC unroll 3
-                        for (unsigned int d = 0; d < dim; ++d)
-                          e += ns[d][k] * (us[d][sj] - ui[d]);
+                      const double       e =
+                        BondKernel::extension<finite_kinematics, dim>(
+                          [&](const unsigned int d) { return xs[d][k]; },
+                          [&](const unsigned int d) { return ns[d][k]; },
+                          rs[k],
+                          [&](const unsigned int d) {
+                            return us[d][sj] - ui[d];
+                          });
                       const bool intact =
-                        e * inv_rs[k] < std::min(c_i, s0s[sj]);
+                        BondKernel::is_intact(e, inv_rs[k], c_i, s0s[sj]);
                       theta += intact ? gs[k] * e : 0.;
                       failed[b - first] = intact ? 0. : 1.;
                       n_failed += intact ? 0. : 1.;
@@ -508,45 +473,41 @@ namespace PeriDEAL
 #pragma omp simd reduction(+ : n_failed)
                       for (unsigned int l = 0; l < len; ++l)
                         {
-                          double y[dim], e = 0, scale = 1;
-                          if constexpr (finite_kinematics)
-                            {
-                              double length2 = 0;
+                          double eta[dim];
 #pragma GCC unroll 3
-                              for (unsigned int d = 0; d < dim; ++d)
-                                {
-                                  y[d]    = xi[d] + (uj[d][l] - ui[d][l]);
-                                  length2 = mul_add(y[d], y[d], length2);
-                                }
-                              const double length = std::sqrt(length2);
-                              e                   = length - r;
-                              scale = length > 0 ? 1. / length : 0.;
-                            }
-                          else
-#pragma GCC unroll 3
-                            for (unsigned int d = 0; d < dim; ++d)
-                              {
-                                y[d] = nk[d];
-                                e    = mul_add(nk[d], uj[d][l] - ui[d][l], e);
-                              }
-                          const bool below = e * inv_r < std::min(ci[l], cj[l]);
-                          bool       gone  = false;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            eta[d] = uj[d][l] - ui[d][l];
+                          const auto bond =
+                            BondKernel::deform<finite_kinematics, dim, Fused>(
+                              xi,
+                              nk,
+                              r,
+                              eta);
+                          const double e = bond.e;
+                          const bool   below =
+                            BondKernel::is_intact(e, inv_r, ci[l], cj[l]);
+                          bool gone = false;
                           if constexpr (with_mask)
                             gone = gone_lane[l] != 0;
                           const bool intact = below && !gone;
                           double     t;
                           if constexpr (with_state)
-                            t = mul_add(a,
-                                        ti[l] + tj[l],
-                                        b * (si[l] + sj[l]) * e);
+                            t = BondKernel::pair_force<Fused>(a,
+                                                              ti[l],
+                                                              tj[l],
+                                                              b,
+                                                              si[l],
+                                                              sj[l],
+                                                              e);
                           else
-                            t = 2 * b * e;
-                          const double ty = intact ? t * scale : 0.;
+                            t = BondKernel::bond_based_pair_force(b, e);
+                          const double ty = intact ? t * bond.scale : 0.;
 #pragma GCC unroll 3
                           for (unsigned int d = 0; d < dim; ++d)
-                            force[d][l] = mul_add(ty, y[d], force[d][l]);
+                            force[d][l] =
+                              Fused::mul_add(ty, bond.y[d], force[d][l]);
                           if constexpr (with_energy)
-                            energy[l] += intact ? b * e * e : 0.;
+                            energy[l] += intact ? BondKernel::energy(b, e) : 0.;
                           failed[l] = (below || gone) ? 0. : 1.;
                           n_failed += (below || gone) ? 0. : 1.;
                         }
@@ -624,36 +585,31 @@ namespace PeriDEAL
                                      const double      r,
                                      const double      a,
                                      const double      b) {
-                double y[dim], e = 0, scale = 1;
-                if constexpr (finite_kinematics)
-                  {
-                    double length2 = 0;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        y[d] = xi[d] + (u_slot[d][sj] - u_slot[d][si]);
-                        length2 += y[d] * y[d];
-                      }
-                    const double length = std::sqrt(length2);
-                    e                   = length - r;
-                    scale               = length > 0 ? 1. / length : 0.;
-                  }
-                else
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      y[d] = n[d];
-                      e += n[d] * (u_slot[d][sj] - u_slot[d][si]);
-                    }
-                if (!(e * (1. / r) < std::min(s0_slot[si], s0_slot[sj])))
+                const auto bond = BondKernel::deform<finite_kinematics, dim>(
+                  xi,
+                  n,
+                  r,
+                  [&](const unsigned int d) {
+                    return u_slot[d][sj] - u_slot[d][si];
+                  });
+                const double e = bond.e;
+                if (!BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
                   {
                     found.emplace_back(i, node_of_slot(sj));
                     return;
                   }
-                const double t = (sb ? a * (t_slot[si] + t_slot[sj]) : 0.) +
-                                 b * (s_slot[si] + s_slot[sj]) * e;
+                const double t = sb ? BondKernel::pair_force(a,
+                                                             t_slot[si],
+                                                             t_slot[sj],
+                                                             b,
+                                                             s_slot[si],
+                                                             s_slot[sj],
+                                                             e) :
+                                                    BondKernel::bond_based_pair_force(b, e);
                 for (unsigned int d = 0; d < dim; ++d)
-                  f[d] += t * scale * y[d];
+                  f[d] += t * bond.scale * bond.y[d];
                 if constexpr (with_energy)
-                  node_energy += b * e * e;
+                  node_energy += BondKernel::energy(b, e);
               };
               if (use_lattice)
                 {
@@ -662,65 +618,68 @@ namespace PeriDEAL
                   const std::size_t first = list_first[i], last = list_end[i];
                   const double      ti = t_slot[si], s_i = s_slot[si],
                                c_i = s0_slot[si];
-                  // Scalars only inside the loop (no small arrays), so
-                  // that it vectorises over the bonds.
-                  const double ui0 = u_slot[0][si], ui1 = u_slot[1][si],
-                               ui2 = u_slot[dim - 1][si];
-                  const double *x0 = xs[0], *x1 = xs[1], *x2 = xs[dim - 1];
-                  const double *n0 = ns[0], *n1 = ns[1], *n2 = ns[dim - 1];
-                  const double *u0 = us[0], *u1 = us[1], *u2 = us[dim - 1];
-                  // Loop invariants as locals: a value read through the
-                  // closure inside the loop keeps it from vectorising.
-                  const bool with_state = sb;
-                  double    *flag       = failed.data();
-                  double     f0 = 0, f1 = 0, f2 = 0, en = 0;
-                  double     n_failed = 0;
+                  double ui[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    ui[d] = u_slot[d][si];
+                  double *flag = failed.data();
+                  double  f0 = 0, f1 = 0, f2 = 0, en = 0;
+                  double  n_failed = 0;
+                  // Bond-based models (s = 1, no dilatation) skip the loads
+                  // of the state-based terms. Inlined, so that the sums and
+                  // invariants are not read through the closure in the loop
+                  // (which keeps it from vectorising).
+                  const auto bonds =
+                    [&](auto state_based_tag)
+                      PERIDEAL_BOND_KERNEL_INLINE_LAMBDA {
+                        constexpr bool with_state =
+                          decltype(state_based_tag)::value;
 #pragma omp simd reduction(+ : f0, f1, f2, en, n_failed)
-                  for (std::size_t b = first; b < last; ++b)
-                    {
-                      const unsigned int k  = index[b];
-                      const std::size_t  sj = si + offset[k];
-                      double             y0, y1, y2 = 0, e, scale = 1;
-                      if constexpr (finite_kinematics)
-                        {
-                          y0             = x0[k] + (u0[sj] - ui0);
-                          y1             = x1[k] + (u1[sj] - ui1);
-                          double length2 = y0 * y0 + y1 * y1;
-                          if constexpr (dim == 3)
-                            {
-                              y2 = x2[k] + (u2[sj] - ui2);
-                              length2 += y2 * y2;
-                            }
-                          const double length = std::sqrt(length2);
-                          e                   = length - rs[k];
-                          scale               = length > 0 ? 1. / length : 0.;
-                        }
-                      else
-                        {
-                          y0 = n0[k];
-                          y1 = n1[k];
-                          e  = y0 * (u0[sj] - ui0) + y1 * (u1[sj] - ui1);
-                          if constexpr (dim == 3)
-                            {
-                              y2 = n2[k];
-                              e += y2 * (u2[sj] - ui2);
-                            }
-                        }
-                      const bool intact =
-                        e * inv_rs[k] < std::min(c_i, s0s[sj]);
-                      const double t =
-                        (with_state ? as[k] * (ti + ts[sj]) : 0.) +
-                        bs[k] * (s_i + ss[sj]) * e;
-                      const double ty = intact ? t * scale : 0.;
-                      f0 += ty * y0;
-                      f1 += ty * y1;
-                      if constexpr (dim == 3)
-                        f2 += ty * y2;
-                      if constexpr (with_energy)
-                        en += intact ? bs[k] * e * e : 0.;
-                      flag[b - first] = intact ? 0. : 1.;
-                      n_failed += intact ? 0. : 1.;
-                    }
+                        for (std::size_t b = first; b < last; ++b)
+                          {
+                            const unsigned int k  = index[b];
+                            const std::size_t  sj = si + offset[k];
+                            double             xi[dim], n[dim], eta[dim];
+#pragma GCC unroll 3
+                            for (unsigned int d = 0; d < dim; ++d)
+                              {
+                                xi[d]  = xs[d][k];
+                                n[d]   = ns[d][k];
+                                eta[d] = us[d][sj] - ui[d];
+                              }
+                            const auto bond =
+                              BondKernel::deform<finite_kinematics, dim>(xi,
+                                                                         n,
+                                                                         rs[k],
+                                                                         eta);
+                            const double e = bond.e;
+                            const bool   intact =
+                              BondKernel::is_intact(e, inv_rs[k], c_i, s0s[sj]);
+                            double t;
+                            if constexpr (with_state)
+                              t = BondKernel::pair_force(as[k],
+                                                         ti,
+                                                         ts[sj],
+                                                         bs[k],
+                                                         s_i,
+                                                         ss[sj],
+                                                         e);
+                            else
+                              t = BondKernel::bond_based_pair_force(bs[k], e);
+                            const double ty = intact ? t * bond.scale : 0.;
+                            f0 += ty * bond.y[0];
+                            f1 += ty * bond.y[1];
+                            if constexpr (dim == 3)
+                              f2 += ty * bond.y[dim - 1];
+                            if constexpr (with_energy)
+                              en += intact ? BondKernel::energy(bs[k], e) : 0.;
+                            flag[b - first] = intact ? 0. : 1.;
+                            n_failed += intact ? 0. : 1.;
+                          }
+                      };
+                  if (sb)
+                    bonds(std::true_type());
+                  else
+                    bonds(std::false_type());
                   f[0] = f0;
                   f[1] = f1;
                   if constexpr (dim == 3)
@@ -776,23 +735,17 @@ namespace PeriDEAL
                             const double     *n,
                             const double      r,
                             const double      b) {
-        double e = 0;
-        if (finite)
-          {
-            double length2 = 0;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double y = xi[d] + (u_slot[d][sj] - u_slot[d][si]);
-                length2 += y * y;
-              }
-            e = std::sqrt(length2) - r;
-          }
-        else
-          for (unsigned int d = 0; d < dim; ++d)
-            e += n[d] * (u_slot[d][sj] - u_slot[d][si]);
-        if (fail && !(e / r < std::min(s0_slot[si], s0_slot[sj])))
+        const auto eta = [&](const unsigned int d) {
+          return u_slot[d][sj] - u_slot[d][si];
+        };
+        const double e = finite ?
+                               BondKernel::extension<true, dim>(xi, n, r, eta) :
+                               BondKernel::extension<false, dim>(xi, n, r, eta);
+        // The force passes' test, so that the energy leaves out the bonds
+        // that they leave out.
+        if (fail && !BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
           return 0.;
-        return b * e * e;
+        return BondKernel::energy(b, e);
       };
       const double energy = parallel::accumulate_from_subranges<double>(
         [&](const unsigned int begin, const unsigned int end) {

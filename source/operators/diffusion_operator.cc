@@ -14,8 +14,8 @@ namespace PeriDEAL
     {
       // Work items per task of the thread pool: runs of the stencil loop
       // and nodes of the list loop.
-      constexpr unsigned int chunk_grain = 4;
-      constexpr unsigned int node_grain  = 256;
+      using LoopLayout::chunk_grain;
+      using LoopLayout::node_grain;
     } // namespace
 
 
@@ -71,15 +71,8 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < n; ++i)
         node_index[i] = partitioner->global_to_local((*nodes)[i].dofs[0] / dim);
 
-      // Slots: the lattice box on a uniform grid (unless it is much larger
-      // than the node set), node indices otherwise.
+      LoopLayout::choose_slots(*lists, n, use_lattice, n_slots, slot);
       const auto &lattice = lists->lattice();
-      use_lattice         = lattice.is_uniform() && !lists->stencil().empty() &&
-                    lattice.n_slots() <= 8 * static_cast<std::size_t>(n) + 4096;
-      n_slots = use_lattice ? lattice.n_slots() : n;
-      slot.resize(n);
-      for (unsigned int i = 0; i < n; ++i)
-        slot[i] = use_lattice ? lattice.slot(i) : i;
 
       stencil_offset.clear();
       stencil_mu.clear();

@@ -3,6 +3,7 @@
 
 #include <perideal/boundary/taylor_extrapolation.h>
 #include <perideal/discretization/lattice.h>
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/fictitious_layer_operator.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
@@ -645,11 +646,16 @@ namespace PeriDEAL
           for (unsigned int d = 0; d < dim; ++d)
             r2 += n.offset[d] * n.offset[d];
           const double r = std::sqrt(r2) * h;
+          // Every node has the bulk weighted volume, so the same node
+          // factor: the bond's stiffness from the kernel.
+          const double s_0 = model.node_factor(s.m0);
           s.omega_r.push_back(model.influence(r, horizon));
           s.a_r.push_back(s.state_based ?
-                            model.dilatation_coefficient(s.m0, r, horizon) :
+                            BondKernel::dilatation_stiffness(
+                              model.dilatation_constant(r, horizon), s_0) :
                             0.);
-          s.b2_r.push_back(2 * model.extension_coefficient(s.m0, r, horizon));
+          s.b2_r.push_back(BondKernel::extension_stiffness(
+            model.extension_constant(r, horizon), s_0, s_0));
           s.g_r.push_back(s.state_based ?
                             dim / s.m0 * model.influence(r, horizon) * r *
                               n.beta * volume :

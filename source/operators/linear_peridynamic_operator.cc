@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/linear_peridynamic_operator.h>
 
 #include <algorithm>
@@ -142,7 +143,10 @@ namespace PeriDEAL
             const Tensor<1, dim> u_i   = u(i);
             double               theta = 0;
             for_each_bond(i, [&](const BondData &bond) {
-              theta += bond.theta_factor * (bond.n * (u(bond.neighbor) - u_i));
+              theta +=
+                bond.theta_factor *
+                BondKernel::linear_extension<dim>(bond.n,
+                                                  u(bond.neighbor) - u_i);
             });
             dilatation[i] = theta;
           }
@@ -169,7 +173,8 @@ namespace PeriDEAL
           const Tensor<1, dim> u_i = u(i);
           Tensor<1, dim>       f;
           for_each_bond(i, [&](const BondData &bond) {
-            const double e = bond.n * (u(bond.neighbor) - u_i);
+            const double e =
+              BondKernel::linear_extension<dim>(bond.n, u(bond.neighbor) - u_i);
             f += (bond.a_i * theta[i] + bond.a_j * theta[bond.neighbor] +
                   bond.b_sum * e) *
                  bond.weight * bond.n;

@@ -10,6 +10,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/diffusion_kernel.h>
+#include <perideal/operators/loop_layout.h>
 
 #include <memory>
 #include <vector>
@@ -165,7 +166,7 @@ namespace PeriDEAL
       memory_consumption() const;
 
       /// Slots per run of the vectorised stencil loop.
-      static constexpr unsigned int chunk_size = 64;
+      static constexpr unsigned int chunk_size = LoopLayout::chunk_size;
 
     private:
       struct Chunk
