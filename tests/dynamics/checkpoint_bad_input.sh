@@ -12,6 +12,7 @@
 # count was reported as "Out of memory"), a truncated file.
 set -u
 perideal="$1"; nprocs="$2"
+here="$(cd "$(dirname "$0")" && pwd)"
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -28,39 +29,16 @@ flip() { # flip FILE OFFSET
 }
 listing() { find out -type f | sort | xargs md5sum; }
 
-cat > first.prm <<'PRM'
-set Dimension = 2
-set Problem type = explicit dynamics
-subsection Geometry
-  set Lower corner = 0, 0
-  set Upper corner = 1, 0.5
-  set Subdivisions = 20, 10
-end
-subsection Material model
-  set Model = bond-based
-  subsection bond-based
-    set Young's modulus = 7.2e10
-    set Poisson's ratio = 0.25
-    set Density = 1000
-    set Critical stretch = 0.0001
-  end
-end
-subsection explicit dynamics
-  set End time = 2e-4
-  set Steps per run = 10
-  set Energy every steps = 5
-  set Progress interval = 0
-  set Pre-cracks = 0, 0.25, 0.5, 0.25
-  set Probe points = 0.7, 0.25
-  subsection Initial velocity
-    set Variable names = x,y,t
-    set Function expression = 0; y > 0.25 ? 1 : -1
-  end
-end
-subsection Output
-  set Directory = out
-end
-PRM
+# The input of bad_input.sh, with a checkpoint every 10 steps of 20, a
+# probe, and bonds that break.
+sed -e "s/^    set Poisson's ratio = 0.25/    set Young's modulus = 7.2e10\n&/" \
+    -e 's/^    set Critical stretch = 0.01$/    set Critical stretch = 0.0001/' \
+    -e 's/^  set End time = 1e-4$/  set End time = 2e-4\n  set Steps per run = 10\n  set Energy every steps = 5\n  set Progress interval = 0/' \
+    -e 's/^  set Pre-cracks = 0, 0.25, 0.5, 0.25$/&\n  set Probe points = 0.7, 0.25/' \
+    "$here/bad_input/base.prm" > first.prm
+for entry in "Young's modulus = 7.2e10" "Critical stretch = 0.0001" "End time = 2e-4" "Steps per run = 10" "Probe points = 0.7, 0.25"; do
+  grep -qF "set $entry" first.prm || fail "first.prm: the edit to 'set $entry' of bad_input/base.prm matched nothing"
+done
 sed 's/  set Steps per run = 10/  set Steps per run = 10\n  set Resume from checkpoint = true/' first.prm > next.prm
 run first.prm first.log || { cat first.log; fail "the first chunk failed"; }
 run next.prm next.log || { cat next.log; fail "the second chunk failed"; }
