@@ -13,11 +13,8 @@
 set -u
 perideal="$1"; nprocs="$2"
 here="$(cd "$(dirname "$0")" && pwd)"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-work="$(pwd)/checkpoint_bad_input.np$nprocs"
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
+. "$here/../bad_input_checks.sh"
+enter_work "checkpoint_bad_input.np$nprocs"
 run() { # run PRM LOG
   if [ "$nprocs" -eq 1 ]; then timeout 60 "$perideal" "$1" > "$2" 2>&1
   else timeout 60 mpirun --oversubscribe -np "$nprocs" "$perideal" "$1" --threads 1 > "$2" 2>&1; fi
@@ -54,8 +51,7 @@ expect_refusal() {
   [ -z "$damage" ] || eval "$damage"
   before=$(listing)
   run "$prm" case.log; rc=$?
-  [ $rc -ne 0 ] || fail "exit code 0 for $prm ${damage:+($damage)}"
-  [ $rc -ne 124 ] || fail "hang (timeout) on $nprocs processes for $prm ${damage:+($damage)}"
+  check_clean_exit "$rc" "$(cat case.log)" "$prm ${damage:+($damage) }on $nprocs processes"
   grep -qF -- "$expected" case.log \
     || { tail -5 case.log; fail "no \"$expected\" in the message for $prm ${damage:+($damage)}"; }
   [ "$(listing)" = "$before" ] || fail "the checkpoint or the output changed for $prm ${damage:+($damage)}"
@@ -105,4 +101,4 @@ sed 's/  set Steps per run = 10/  set Steps per run = 10\n  set Overwrite checkp
 run overwrite.prm overwrite.log || { tail -5 overwrite.log; fail "'Overwrite checkpoint = true' failed"; }
 grep -q "checkpoint at step 10 written" overwrite.log || fail "'Overwrite checkpoint = true' wrote no checkpoint at step 10"
 
-if [ "$failures" -eq 0 ]; then echo "OK: every bad checkpoint was refused"; else exit 1; fi
+finish "every bad checkpoint was refused"
