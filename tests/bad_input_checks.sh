@@ -1,7 +1,8 @@
 # The harness of the bad-input tests (tests/dynamics/bad_input.sh,
 # tests/diffusion/bad_input.sh, tests/driver/bad_input.sh and
 # tests/dynamics/checkpoint_bad_input.sh), sourced by them: the failure
-# count, the runs of perideal and the checks of a refused input.
+# count, the runs of perideal, the checks of a refused input, and the case
+# groups (one ctest each).
 #
 # A script sets perideal (the executable) before it runs a case; the cases
 # (expect_error and the like) edit the input file named by base_prm
@@ -39,6 +40,7 @@ run_perideal() {
     # A failure on one process must stop all of them: a hang is a failure.
     out=$(timeout 120 mpirun --oversubscribe -np "$nprocs" "$perideal" "$@" 2>&1); rc=$?
   fi
+  in_case_group
 }
 
 # check_clean_exit RC OUTPUT WHAT
@@ -144,14 +146,28 @@ expect_error() {
   return 0
 }
 
+# stops_during_run NPROCS PRM WHAT
+#   PRM, run under mpirun (also on one process) with a fresh out/, stops
+#   during its time loop with a clean error exit; the output written before
+#   is there (out/solution.pvd) and complete. The caller checks the message.
+stops_during_run() {
+  local nprocs="$1" prm="$2" what="$3"
+  rm -rf out
+  run_perideal --mpirun "$nprocs" "$prm"
+  check_clean_exit "$rc" "$out" "$what"
+  [ -f out/solution.pvd ] || fail "the earlier output is gone for: $what"
+  check_records "$what"
+}
+
 # expect_error_later "sed expression" "substring of the message" nprocs
-#   A value that turns bad during the run stops it (under mpirun, also on one
-#   process) with a clean error exit and the message; the output written
-#   before stays complete.
+#   A value that turns bad during the run stops it (stops_during_run) with
+#   the message, which names the entry and its value.
 expect_error_later() {
-  refused --mpirun later.prm "$@" || return 0
-  [ -f out/solution.pvd ] || fail "the earlier output is gone for: $1"
-  check_records "$1"
+  local edit="$1" expected="$2" nprocs="$3"
+  edit_base "$edit" later.prm || return 0
+  stops_during_run "$nprocs" later.prm "$edit (on $nprocs processes)"
+  check_names_entry_and_value "$expected" "$edit"
+  check_message "$expected" "$edit"
 }
 
 # expect_stop "sed expression" "substring of the message" nprocs
@@ -176,5 +192,36 @@ expect_valid() {
   for file; do
     [ -f "$file" ] || fail "$what wrote no $file"
   done
+  return 0
+}
+
+# Case groups. A script defines its cases in functions group_<name> (each
+# one self-contained: it writes or copies what it needs) and ends with
+# run_case_group GROUP; tests/CMakeLists.txt finds the functions in the
+# script and adds one ctest for each, so that ctest -j runs them side by
+# side. GROUP 'all' runs every group, one after the other.
+run_case_group() {
+  local selected="$1" groups group
+  groups=$(declare -F | sed -n 's/^declare -f group_//p')
+  if [ "$selected" = all ]; then
+    for group in $groups; do
+      current_group="$group" base_prm=base.prm
+      "group_$group"
+    done
+  elif grep -qxF -- "$selected" <<<"$groups"; then
+    current_group="$selected"
+    "group_$selected"
+  else
+    echo "FAIL: no case group '$selected'; the groups are:" $groups
+    exit 2
+  fi
+  current_group=
+}
+
+# in_case_group: in a script with case groups, a run outside every group
+# (it would run in each ctest of the script) fails.
+in_case_group() {
+  [ -n "${current_group:-}" ] || ! declare -F | grep -q '^declare -f group_' \
+    || fail "a run outside every case group (function group_<name>)"
   return 0
 }
