@@ -1,4 +1,5 @@
-// perideal: runs the quasi-static PD problem described by a parameter file.
+// perideal: runs the PD problem (any registered problem type) described by a
+// parameter file.
 //
 //   perideal input.prm             run (under mpirun for several processes)
 //   perideal --threads N input.prm  with N threads per process (default:
