@@ -713,11 +713,11 @@ namespace PeriDEAL
 #pragma omp simd
                   for (unsigned int l = 0; l < len; ++l)
                     {
-                      double eta[dim];
-                      for (unsigned int d = 0; d < dim; ++d)
-                        eta[d] = uj[d][l] - ui[d][l];
                       // g e with g folded into the direction.
-                      theta[l] += BondKernel::linear_extension<dim>(gn, eta);
+                      theta[l] += BondKernel::linear_extension_of_lane<dim>(gn,
+                                                                            uj,
+                                                                            ui,
+                                                                            l);
                     }
                 }
               const double s = stencil.node_factor;
@@ -810,11 +810,11 @@ namespace PeriDEAL
 #pragma omp simd
                       for (unsigned int l = 0; l < len; ++l)
                         {
-                          double eta[dim];
-                          for (unsigned int d = 0; d < dim; ++d)
-                            eta[d] = uj[d][l] - ui[d][l];
                           const double e =
-                            BondKernel::linear_extension<dim>(nk, eta);
+                            BondKernel::linear_extension_of_lane<dim>(nk,
+                                                                      uj,
+                                                                      ui,
+                                                                      l);
                           const double t = BondKernel::pair_force(a,
                                                                   ti[l],
                                                                   tj[l],
@@ -832,11 +832,11 @@ namespace PeriDEAL
 #pragma omp simd
                       for (unsigned int l = 0; l < len; ++l)
                         {
-                          double eta[dim];
-                          for (unsigned int d = 0; d < dim; ++d)
-                            eta[d] = uj[d][l] - ui[d][l];
                           const double e =
-                            BondKernel::linear_extension<dim>(nk, eta);
+                            BondKernel::linear_extension_of_lane<dim>(nk,
+                                                                      uj,
+                                                                      ui,
+                                                                      l);
                           const double t =
                             BondKernel::bond_based_pair_force(b, e);
                           for (unsigned int d = 0; d < dim; ++d)
