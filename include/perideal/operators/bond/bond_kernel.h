@@ -134,9 +134,11 @@ namespace PeriDEAL
                                const double *const *const u_i,
                                const unsigned int         l)
       {
-        double e = 0;
-#pragma GCC unroll 3
-        for (unsigned int d = 0; d < dim; ++d)
+        // The first term alone: 0 + n x would cost an addition per lane
+        // (it is not n x for x = -0, so the compiler keeps it).
+        double e = n[0] * (u_j[0][l] - u_i[0][l]);
+#pragma GCC unroll 2
+        for (unsigned int d = 1; d < dim; ++d)
           e = Arithmetic::mul_add(n[d], u_j[d][l] - u_i[d][l], e);
         return e;
       }
