@@ -9,6 +9,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace PeriDEAL
@@ -16,13 +17,18 @@ namespace PeriDEAL
   double
   host_available_memory()
   {
+    // One line at a time: some lines have no unit ("HugePages_Total: 0"),
+    // so reading "key value unit" triples would lose step after them.
     std::ifstream meminfo("/proc/meminfo");
-    std::string   key;
-    double        kb = 0;
-    std::string   unit;
-    while (meminfo >> key >> kb >> unit)
-      if (key == "MemAvailable:")
-        return kb * 1024;
+    std::string   line;
+    while (std::getline(meminfo, line))
+      {
+        std::istringstream fields(line);
+        std::string        key;
+        double             kb = 0;
+        if (fields >> key >> kb && key == "MemAvailable:")
+          return kb * 1024;
+      }
     return 0;
   }
 
