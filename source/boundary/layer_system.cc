@@ -2,8 +2,6 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
-#include <deal.II/lac/trilinos_precondition.h>
-
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/layer_system.h>
 #include <perideal/discretization/lattice.h>
@@ -36,24 +34,11 @@ namespace PeriDEAL
       const auto &solver = simulator.get_linear_solver();
       if (!solver.is_matrix_free())
         return;
-      // Without a matrix: the factored operator, GMRES or BiCGStab (the
-      // system is not symmetric), no preconditioner or local elasticity.
-      AssertThrow(solver.method() == "GMRES" || solver.method() == "BiCGStab",
-                  ExcInvalidInput("Linear solver/Method",
-                                  solver.method(),
-                                  "the boundary treatment '" + treatment_name +
-                                    "' gives a non-symmetric system: with "
-                                    "'Operator = matrix-free' use GMRES or "
-                                    "BiCGStab"));
-      AssertThrow(solver.preconditioner_name() == "none" ||
-                    solver.preconditioner_name() == "local elasticity",
-                  ExcInvalidInput("Linear solver/Preconditioner",
-                                  solver.preconditioner_name(),
-                                  "with 'Operator = matrix-free' the boundary "
-                                  "treatment '" +
-                                    treatment_name +
-                                    "' offers 'local elasticity' or 'none' "
-                                    "(no diagonal is formed)"));
+      // Without a matrix: the factored operator is not symmetric and has
+      // no diagonal.
+      solver.check_form(Solvers::OperatorForm::layer,
+                        false,
+                        "the boundary treatment '" + treatment_name + "'");
     }
 
 
@@ -372,15 +357,15 @@ namespace PeriDEAL
             out[l] = in[l];
       };
 
-      // Local elasticity (Q1 on the dual grid of the body nodes, with the
-      // Dirichlet layers of the boundary conditions) on the body unknowns;
-      // surface unknowns scaled by the mean body diagonal.
+      // A preconditioner on the local elasticity matrix (Q1 on the dual grid
+      // of the body nodes, with the Dirichlet layers of the boundary
+      // conditions) acts on the body unknowns, the surface unknowns scaled
+      // by the mean body diagonal; any other acts on all unknowns.
       Solvers::LinearSolver::TrilinosMap precondition;
-      TrilinosWrappers::PreconditionAMG  amg;
       Vector                             body_residual, body_correction;
       double                             surface_scale = 1;
       std::vector<std::pair<unsigned int, unsigned int>> body_positions;
-      if (ctx.linear_solver.preconditioner_name() == "local elasticity")
+      if (ctx.linear_solver.preconditioner().needs_local_matrix())
         {
           TimerOutput::Scope           inner(ctx.timer, "preconditioner setup");
           Discretization::Lattice<dim> lattice;
@@ -398,14 +383,14 @@ namespace PeriDEAL
                                                             ctx.model,
                                                             layers,
                                                             local_matrix);
-          std::vector<std::vector<bool>> constant_modes;
+          Solvers::PreconditionerSetup setup;
+          setup.local_matrix = &local_matrix;
           DoFTools::extract_constant_modes(ctx.dof_handler,
                                            ComponentMask(dim, true),
-                                           constant_modes);
-          TrilinosWrappers::PreconditionAMG::AdditionalData data;
-          data.elliptic       = true;
-          data.constant_modes = constant_modes;
-          amg.initialize(local_matrix, data);
+                                           setup.constant_modes);
+          const Solvers::Preconditioner &body_preconditioner =
+            ctx.linear_solver.setup_preconditioner(Solvers::OperatorForm::layer,
+                                                   std::move(setup));
           double diagonal_sum = 0;
           for (const auto dof : ctx.dof_handler.locally_owned_dofs())
             diagonal_sum += local_matrix.diag_element(dof);
@@ -427,7 +412,7 @@ namespace PeriDEAL
             double       *residual = body_residual.trilinos_vector()[0];
             for (const auto &[unknown, dof] : body_positions)
               residual[dof] = in[unknown];
-            amg.vmult(body_correction, body_residual);
+            body_preconditioner.vmult(body_correction, body_residual);
             dst = src;
             dst *= surface_scale;
             double       *out        = dst.trilinos_vector()[0];
@@ -436,12 +421,23 @@ namespace PeriDEAL
               out[unknown] = correction[dof];
           };
         }
+      else if (!ctx.linear_solver.preconditioner().is_identity())
+        {
+          const Solvers::Preconditioner &preconditioner =
+            ctx.linear_solver.setup_preconditioner(
+              Solvers::OperatorForm::layer,
+              Solvers::PreconditionerSetup());
+          precondition = [&preconditioner](Vector &dst, const Vector &src) {
+            preconditioner.vmult(dst, src);
+          };
+        }
       ctx.summary.solver =
         ctx.linear_solver.solve(op,
                                 precondition,
                                 solution,
                                 rhs,
                                 ctx.linear_solver.preconditioner_name());
+      ctx.linear_solver.release_preconditioner();
       solution += g;
     }
 

@@ -148,7 +148,7 @@ namespace PeriDEAL
                 << " thread(s) per process" << std::defaultfloat << std::endl;
 
       std::vector<std::vector<bool>> constant_modes;
-      if (ctx.linear_solver.preconditioner_name() == "local elasticity")
+      if (ctx.linear_solver.preconditioner().needs_local_matrix())
         {
           TimerOutput::Scope scope(ctx.timer, "preconditioner setup");
           Operators::LocalElasticityOperator<dim>::assemble(

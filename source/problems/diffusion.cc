@@ -2,15 +2,15 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <deal.II/lac/diagonal_matrix.h>
-#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/solvers/amg.h>
+#include <perideal/solvers/krylov.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,6 +73,7 @@ namespace PeriDEAL
                         "diagonal, or algebraic multigrid on the local "
                         "Laplacian (cell-centred finite volumes on the same "
                         "nodes; uniform grids).");
+      Solvers::AmgSettings::declare_parameters(prm, "0.02");
       prm.declare_entry("Solver tolerance",
                         "1e-10",
                         Patterns::Double(),
@@ -215,22 +216,22 @@ namespace PeriDEAL
                   ExcInvalidInput(section + "/Safety factor",
                                   prm.get("Safety factor"),
                                   "give a fraction in (0, 1]"));
-      allow_unstable = prm.get_bool("Allow unstable time step");
-      preconditioner = prm.get("Preconditioner");
-      tolerance      = prm.get_double("Solver tolerance");
+      allow_unstable  = prm.get_bool("Allow unstable time step");
+      local_laplacian = prm.get("Preconditioner") == "local laplacian";
+      amg_settings.parse_parameters(prm);
+      tolerance = prm.get_double("Solver tolerance");
       AssertThrow(tolerance > 0 && tolerance < 1,
                   ExcInvalidInput(section + "/Solver tolerance",
                                   prm.get("Solver tolerance"),
                                   "give a relative tolerance in (0, 1)"));
       max_iterations = prm.get_integer("Maximum iterations");
 
-      const auto parse = [&](const std::string &name,
-                             auto              &function,
-                             FunctionEntry     &entry) {
-        function = parse_function<dim>(prm, name, section, 1, &entry);
-        expressions[name] = entry.expression;
-        return entry.expression;
-      };
+      const auto parse =
+        [&](const std::string &name, auto &function, FunctionEntry &entry) {
+          function = parse_function<dim>(prm, name, section, 1, &entry);
+          expressions[name] = entry.expression;
+          return entry.expression;
+        };
       parse("Initial concentration", initial, initial_entry);
       with_source = parse("Source", source, source_entry) != "0";
       parse("Boundary concentration", boundary_value, boundary_value_entry);
@@ -439,7 +440,7 @@ namespace PeriDEAL
         {
           TimerOutput::Scope scope(simulator.get_timer(), "steady solve");
           evaluate_source(0, rhs);
-          if (preconditioner == "local laplacian")
+          if (local_laplacian)
             setup_local_laplacian(simulator, 0, 1);
           last_iterations = solve(simulator, 0, 1, rhs, c);
           total_iterations += last_iterations;
@@ -450,7 +451,7 @@ namespace PeriDEAL
           return;
         }
       choose_time_step(simulator);
-      if (stepping == "implicit" && preconditioner == "local laplacian")
+      if (stepping == "implicit" && local_laplacian)
         setup_local_laplacian(simulator, 1, theta * dt);
       record_history(simulator);
       write_output(simulator);
@@ -468,7 +469,7 @@ namespace PeriDEAL
           const bool by_steps =
             output_every_steps > 0 && step_number % output_every_steps == 0;
           const bool by_time = time_loop.output_due(time, dt, next_output_time);
-          const bool row = last || step_number % history_every_steps == 0;
+          const bool row     = last || step_number % history_every_steps == 0;
           {
             TimerOutput::Scope model_scope(simulator.get_timer(),
                                            "model (" + model_name + ")");
@@ -495,8 +496,7 @@ namespace PeriDEAL
           << "           " << total_iterations << " solver iterations in "
           << n_steps << " steps (" << std::fixed << std::setprecision(1)
           << double(total_iterations) / std::max<std::uint64_t>(n_steps, 1)
-          << " per step)"
-          << std::defaultfloat << std::endl;
+          << " per step)" << std::defaultfloat << std::endl;
     }
 
 
@@ -572,8 +572,7 @@ namespace PeriDEAL
       const double bound = op.gershgorin_bound();
       // The simulator refuses a run without bonds: a bound out of range is
       // the diffusivity's scale (over the squared spacing) overflowing.
-      AssertThrow(std::isfinite(bound) && bound > 0 &&
-                    std::isfinite(2 / bound),
+      AssertThrow(std::isfinite(bound) && bound > 0 && std::isfinite(2 / bound),
                   ExcInvalidInput(section + "/Diffusivity",
                                   format_number(kernel.diffusivity()),
                                   "the stable time step 2 / lambda_G is " +
@@ -699,19 +698,6 @@ namespace PeriDEAL
       };
 
 
-      /// A preconditioner given by an AMG on a Trilinos matrix, applied to
-      /// deal.II vectors through their owned values.
-      struct AmgPreconditioner
-      {
-        using VectorType = LinearAlgebra::distributed::Vector<double>;
-        const TrilinosWrappers::PreconditionAMG &amg;
-
-        void
-        vmult(VectorType &dst, const VectorType &src) const
-        {
-          amg.vmult(dst, src);
-        }
-      };
     } // namespace
 
 
@@ -750,31 +736,40 @@ namespace PeriDEAL
         {
           if (norm == 0)
             x = 0;
-          else if (preconditioner == "local laplacian")
-            {
-              const AmgPreconditioner pre{*amg};
-              if (op.is_symmetric())
-                SolverCG<VectorType>(control).solve(system, x, lifted, pre);
-              else
-                SolverGMRES<VectorType>(control).solve(system, x, lifted, pre);
-            }
           else
             {
-              VectorType inverse_diagonal;
-              op.initialize_vector(inverse_diagonal);
-              for (unsigned int k = 0; k < n; ++k)
-                inverse_diagonal.local_element(k) =
-                  is_prescribed[k] ?
-                    1. :
-                    1. / (alpha + beta * row_sum.local_element(k));
-              DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
-              if (op.is_symmetric())
-                SolverCG<VectorType>(control).solve(system, x, lifted, jacobi);
+              // CG where the operator is symmetric, GMRES (deal.II's
+              // defaults: left-preconditioned, 30 vectors) where not.
+              const Solvers::Method method = op.is_symmetric() ?
+                                               Solvers::Method::cg :
+                                               Solvers::Method::gmres;
+              const typename SolverGMRES<VectorType>::AdditionalData gmres;
+              if (local_laplacian)
+                Solvers::run_krylov(method,
+                                    gmres,
+                                    control,
+                                    system,
+                                    x,
+                                    lifted,
+                                    *amg);
               else
-                SolverGMRES<VectorType>(control).solve(system,
-                                                       x,
-                                                       lifted,
-                                                       jacobi);
+                {
+                  VectorType inverse_diagonal;
+                  op.initialize_vector(inverse_diagonal);
+                  for (unsigned int k = 0; k < n; ++k)
+                    inverse_diagonal.local_element(k) =
+                      is_prescribed[k] ?
+                        1. :
+                        1. / (alpha + beta * row_sum.local_element(k));
+                  const DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
+                  Solvers::run_krylov(method,
+                                      gmres,
+                                      control,
+                                      system,
+                                      x,
+                                      lifted,
+                                      jacobi);
+                }
             }
         }
       catch (const SolverControl::NoConvergence &e)
@@ -904,13 +899,8 @@ namespace PeriDEAL
         for (const auto &entry : rows[i])
           laplacian->set(global(i), entry.first, entry.second);
       laplacian->compress(VectorOperation::insert);
-      TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      data.elliptic              = true;
-      data.higher_order_elements = false;
-      data.smoother_sweeps       = 2;
-      data.aggregation_threshold = 0.02;
       amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-      amg->initialize(*laplacian, data);
+      Solvers::initialize_amg(*amg, *laplacian, amg_settings, {});
     }
 
 

@@ -191,7 +191,7 @@ namespace PeriDEAL
                   std::string())
             << "partial volumes '" << algorithm_name << "'"
             << (problem->uses_linear_solver() ?
-                  ", solver '" + linear_solver.method() + "'" :
+                  ", solver '" + linear_solver.method_name() + "'" :
                   std::string())
             << std::endl;
       make_mesh();

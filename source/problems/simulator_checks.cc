@@ -45,6 +45,9 @@ namespace PeriDEAL
          "Treatment",
          Boundary::BoundaryTreatmentRegistry::names()},
         {"", "Problem type", ProblemTypeRegistry<dim>::names()},
+        {"Linear solver",
+         "Preconditioner",
+         Solvers::PreconditionerRegistry::names()},
         {"diffusion", "Model", Models::DiffusionModelRegistry<dim>::names()}};
       for (const auto &entry : entries)
         {
@@ -148,13 +151,10 @@ namespace PeriDEAL
       if (own >= 0)
         per_node = own;
       else if (linear_solver.is_matrix_free())
-        {
-          if (linear_solver.preconditioner_name() == "local elasticity")
-            per_node += dim == 3 ? 6144 : 1536;
-        }
+        per_node += linear_solver.preconditioner().bytes_per_node(dim);
       else
         per_node += dim * dim * coupled * 12 *
-                    (linear_solver.method() == "direct" ? 2 : 1);
+                    (linear_solver.method() == Solvers::Method::direct ? 2 : 1);
       const double needed = n_nodes * per_node;
 
       // Memory available to this job: MemAvailable of each host, shared

@@ -91,6 +91,24 @@ namespace PeriDEAL
         throw_on_any_rank(error_of(mumps.NumericFactorization()), comm);
         throw_on_any_rank(error_of(mumps.Solve()), comm);
       }
+
+      /// The registered preconditioners that support @p form, quoted, as
+      /// "'a', 'b' or 'c'".
+      std::string
+      names_supporting(const OperatorForm form)
+      {
+        std::vector<std::string> names;
+        for (const auto &name : PreconditionerRegistry::names())
+          if (PreconditionerRegistry::create(name)->supports(form))
+            names.push_back("'" + name + "'");
+        std::string list;
+        for (unsigned int k = 0; k < names.size(); ++k)
+          list += (k == 0                ? "" :
+                   k + 1 == names.size() ? " or " :
+                                           ", ") +
+                  names[k];
+        return list;
+      }
     } // namespace
 
 
@@ -142,6 +160,49 @@ namespace PeriDEAL
     } // namespace internal
 
 
+    Method
+    method_from_name(const std::string &name)
+    {
+      if (name == "direct")
+        return Method::direct;
+      if (name == "CG")
+        return Method::cg;
+      if (name == "GMRES")
+        return Method::gmres;
+      AssertThrow(name == "BiCGStab",
+                  ExcInvalidInput("Linear solver/Method",
+                                  name,
+                                  "choose direct, CG, GMRES or BiCGStab"));
+      return Method::bicgstab;
+    }
+
+
+    std::string
+    name_of(const Method method)
+    {
+      switch (method)
+        {
+          case Method::direct:
+            return "direct";
+          case Method::cg:
+            return "CG";
+          case Method::gmres:
+            return "GMRES";
+          case Method::bicgstab:
+            return "BiCGStab";
+        }
+      return "";
+    }
+
+
+    LinearSolver::LinearSolver()
+      : preconditioner_object(PreconditionerRegistry::create("AMG"))
+    {}
+
+
+    LinearSolver::~LinearSolver() = default;
+
+
     void
     LinearSolver::declare_parameters(ParameterHandler &prm)
     {
@@ -171,29 +232,16 @@ namespace PeriDEAL
                         Patterns::Selection("MUMPS|KLU"),
                         "The Amesos package used by the direct method: "
                         "MUMPS (parallel multifrontal) or KLU (serial).");
-      prm.declare_entry(
-        "Preconditioner",
-        "AMG",
-        Patterns::Selection(
-          "AMG|Jacobi|SSOR|ILU|Chebyshev|local elasticity|none"),
-        "Preconditioner of the Krylov methods. With 'Operator = assembled': "
-        "Trilinos ML algebraic multigrid on the PD matrix (with the rigid "
-        "translations as near-null space), point Jacobi, SSOR, incomplete LU "
-        "(Ifpack ILU(k) on each process, k = 'ILU fill level'), or none. "
-        "With 'Operator = matrix-free': 'Jacobi' or 'Chebyshev' (degree "
-        "'Chebyshev degree') on the exact diagonal, 'local elasticity' "
-        "(ML multigrid on classical elasticity discretised on the same "
-        "nodes, whose iteration counts stay bounded as h shrinks; uniform "
-        "grids), or none.");
-      prm.declare_entry("Chebyshev degree",
-                        "4",
-                        Patterns::Integer(1, 30),
-                        "Degree of the Chebyshev polynomial preconditioner "
-                        "(matrix-free operator).");
-      prm.declare_entry("ILU fill level",
-                        "1",
-                        Patterns::Integer(0, 10),
-                        "Level of fill k of the ILU(k) preconditioner.");
+      std::string help =
+        "Preconditioner of the Krylov methods, a plugin; its parameters are "
+        "in the subsection of its name. The registered ones:";
+      for (const auto &name : PreconditionerRegistry::names())
+        help += " '" + name + "': " + PreconditionerRegistry::description(name);
+      prm.declare_entry("Preconditioner",
+                        "AMG",
+                        Patterns::Selection(
+                          PreconditionerRegistry::pattern_string()),
+                        help);
       prm.declare_entry("Relative tolerance",
                         "1e-10",
                         Patterns::Double(0),
@@ -207,65 +255,55 @@ namespace PeriDEAL
                         "200",
                         Patterns::Integer(1),
                         "Size of the Krylov space before GMRES restarts.");
-      prm.declare_entry("AMG smoother sweeps",
-                        "2",
-                        Patterns::Integer(1),
-                        "Chebyshev smoother sweeps per AMG level.");
-      prm.declare_entry("AMG aggregation threshold",
-                        "1e-4",
-                        Patterns::Double(0),
-                        "Entries below this fraction of the diagonal are "
-                        "ignored when ML builds its aggregates. PD matrices "
-                        "are dense within two horizons; values of 1e-4 to "
-                        "1e-2 work.");
+      AmgSettings::declare_parameters(prm, "1e-4");
+      PreconditionerRegistry::declare_parameters(prm);
     }
 
 
     void
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
-      method_name      = prm.get("Method");
-      direct_package   = prm.get("Direct solver package");
-      preconditioner   = prm.get("Preconditioner");
-      ilu_fill         = prm.get_integer("ILU fill level");
-      tolerance        = prm.get_double("Relative tolerance");
-      max_iterations   = prm.get_integer("Maximum iterations");
-      restart_length   = prm.get_integer("GMRES restart length");
-      smoother_sweeps  = prm.get_integer("AMG smoother sweeps");
-      aggregation      = prm.get_double("AMG aggregation threshold");
-      matrix_free      = prm.get("Operator") == "matrix-free";
-      chebyshev_degree = prm.get_integer("Chebyshev degree");
+      method_value            = method_from_name(prm.get("Method"));
+      direct_package          = prm.get("Direct solver package");
+      preconditioner_selected = prm.get("Preconditioner");
+      tolerance               = prm.get_double("Relative tolerance");
+      max_iterations          = prm.get_integer("Maximum iterations");
+      restart_length          = prm.get_integer("GMRES restart length");
+      amg.parse_parameters(prm);
+      matrix_free = prm.get("Operator") == "matrix-free";
+      preconditioner_object =
+        PreconditionerRegistry::create(preconditioner_selected, prm);
       if (matrix_free)
         {
-          AssertThrow(method_name != "direct",
+          AssertThrow(method_value != Method::direct,
                       ExcInvalidInput(
                         "Linear solver/Method",
-                        method_name,
+                        "direct",
                         "a direct solver factorises a matrix, and "
                         "'Linear solver/Operator = matrix-free' builds none: "
                         "use 'Method = CG' (or GMRES), or 'Operator = "
                         "assembled'"));
-          AssertThrow(
-            preconditioner == "Jacobi" || preconditioner == "Chebyshev" ||
-              preconditioner == "local elasticity" || preconditioner == "none",
-            ExcInvalidInput("Linear solver/Preconditioner",
-                            preconditioner,
-                            "'" + preconditioner +
-                              "' needs the assembled PD matrix, and 'Linear "
-                              "solver/Operator = matrix-free' builds none: use "
-                              "'local elasticity', 'Chebyshev' or 'Jacobi', or "
-                              "'Operator = assembled'"));
+          AssertThrow(preconditioner_object->supports(
+                        OperatorForm::matrix_free),
+                      ExcInvalidInput(
+                        "Linear solver/Preconditioner",
+                        preconditioner_selected,
+                        "'" + preconditioner_selected +
+                          "' needs the assembled PD matrix, and 'Linear "
+                          "solver/Operator = matrix-free' builds none: use " +
+                          names_supporting(OperatorForm::matrix_free) +
+                          ", or 'Operator = assembled'"));
         }
       else
-        AssertThrow(preconditioner != "Chebyshev" &&
-                      preconditioner != "local elasticity",
+        AssertThrow(preconditioner_object->supports(OperatorForm::assembled),
                     ExcInvalidInput(
                       "Linear solver/Preconditioner",
-                      preconditioner,
-                      "'" + preconditioner +
+                      preconditioner_selected,
+                      "'" + preconditioner_selected +
                         "' is a preconditioner of the matrix-free operator: "
-                        "set 'Linear solver/Operator = matrix-free', or use "
-                        "AMG, Jacobi, SSOR or ILU on the assembled matrix"));
+                        "set 'Linear solver/Operator = matrix-free', or use " +
+                        names_supporting(OperatorForm::assembled) +
+                        " on the assembled matrix"));
       AssertThrow(tolerance > 0 && tolerance < 1,
                   ExcInvalidInput("Linear solver/Relative tolerance",
                                   prm.get("Relative tolerance"),
@@ -275,10 +313,17 @@ namespace PeriDEAL
     }
 
 
-    const std::string &
+    Method
     LinearSolver::method() const
     {
-      return method_name;
+      return method_value;
+    }
+
+
+    std::string
+    LinearSolver::method_name() const
+    {
+      return name_of(method_value);
     }
 
 
@@ -289,10 +334,57 @@ namespace PeriDEAL
     }
 
 
+    const Preconditioner &
+    LinearSolver::preconditioner() const
+    {
+      return *preconditioner_object;
+    }
+
+
     const std::string &
     LinearSolver::preconditioner_name() const
     {
-      return preconditioner;
+      return preconditioner_selected;
+    }
+
+
+    void
+    LinearSolver::check_form(const OperatorForm form,
+                             const bool         symmetric,
+                             const std::string &owner) const
+    {
+      // (The direct method needs no symmetry, and parse_parameters()
+      // already refused it for the matrix-free forms.)
+      AssertThrow(symmetric || method_value != Method::cg,
+                  ExcInvalidInput("Linear solver/Method",
+                                  method_name(),
+                                  owner +
+                                    " gives a non-symmetric system: with "
+                                    "'Operator = matrix-free' use GMRES or "
+                                    "BiCGStab"));
+      AssertThrow(preconditioner_object->supports(form),
+                  ExcInvalidInput("Linear solver/Preconditioner",
+                                  preconditioner_selected,
+                                  "with the " + name_of(form) + " of " + owner +
+                                    " choose " + names_supporting(form)));
+    }
+
+
+    const Preconditioner &
+    LinearSolver::setup_preconditioner(const OperatorForm    form,
+                                       PreconditionerSetup &&setup) const
+    {
+      Assert(preconditioner_object->supports(form), ExcInternalError());
+      setup.amg = amg;
+      preconditioner_object->initialize(form, setup);
+      return *preconditioner_object;
+    }
+
+
+    void
+    LinearSolver::release_preconditioner() const
+    {
+      preconditioner_object->clear();
     }
 
 
@@ -306,17 +398,17 @@ namespace PeriDEAL
       Timer        timer;
       SolverReport report;
       const double rhs_norm = rhs.l2_norm();
-      internal::check_finite_rhs(rhs_norm, method_name);
+      internal::check_finite_rhs(rhs_norm, method_name());
       if (rhs_norm == 0)
         {
           // A = 0 right-hand side: the solution is zero, and a relative
           // residual is meaningless.
           solution      = 0;
-          report.method = method_name;
+          report.method = method_name();
           return report;
         }
 
-      if (method_name == "direct")
+      if (method_value == Method::direct)
         {
           report.method = "direct (Amesos " + direct_package + ")";
           if (direct_package == "MUMPS")
@@ -354,74 +446,42 @@ namespace PeriDEAL
         }
       else
         {
-          AssertThrow(method_name != "CG" || symmetric,
+          AssertThrow(method_value != Method::cg || symmetric,
                       ExcInvalidInput("Linear solver/Method",
-                                      method_name,
+                                      method_name(),
                                       "this system is not symmetric; use "
                                       "GMRES, BiCGStab or direct"));
-          report.method = method_name + " + " + preconditioner;
-
-          std::unique_ptr<TrilinosWrappers::PreconditionBase> precondition;
-          if (preconditioner == "AMG")
-            {
-              TrilinosWrappers::PreconditionAMG::AdditionalData data;
-              data.elliptic              = true;
-              data.constant_modes        = constant_modes;
-              data.smoother_sweeps       = smoother_sweeps;
-              data.aggregation_threshold = aggregation;
-              auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-              amg->initialize(matrix, data);
-              precondition = std::move(amg);
-            }
-          else if (preconditioner == "Jacobi")
-            {
-              auto jacobi =
-                std::make_unique<TrilinosWrappers::PreconditionJacobi>();
-              jacobi->initialize(matrix);
-              precondition = std::move(jacobi);
-            }
-          else if (preconditioner == "ILU")
-            {
-              auto ilu = std::make_unique<TrilinosWrappers::PreconditionILU>();
-              TrilinosWrappers::PreconditionILU::AdditionalData data;
-              data.ilu_fill = ilu_fill;
-              ilu->initialize(matrix, data);
-              precondition = std::move(ilu);
-            }
-          else if (preconditioner == "SSOR")
-            {
-              auto ssor =
-                std::make_unique<TrilinosWrappers::PreconditionSSOR>();
-              ssor->initialize(matrix);
-              precondition = std::move(ssor);
-            }
-          else
-            precondition =
-              std::make_unique<TrilinosWrappers::PreconditionIdentity>();
+          report.method = method_name() + " + " + preconditioner_selected;
+          PreconditionerSetup setup;
+          setup.matrix         = &matrix;
+          setup.constant_modes = constant_modes;
+          const TrilinosWrappers::PreconditionBase &precondition =
+            setup_preconditioner(OperatorForm::assembled, std::move(setup))
+              .trilinos_preconditioner();
 
           SolverControl control(max_iterations, tolerance * rhs_norm);
           try
             {
               try
                 {
-                  if (method_name == "CG")
+                  if (method_value == Method::cg)
                     {
                       TrilinosWrappers::SolverCG solver(control);
-                      solver.solve(matrix, solution, rhs, *precondition);
+                      solver.solve(matrix, solution, rhs, precondition);
                     }
-                  else if (method_name == "GMRES")
+                  else if (method_value == Method::gmres)
                     {
                       TrilinosWrappers::SolverGMRES solver(
                         control,
                         TrilinosWrappers::SolverGMRES::AdditionalData(
                           false,
                           restart_length));
-                      solver.solve(matrix, solution, rhs, *precondition);
+                      solver.solve(matrix, solution, rhs, precondition);
                     }
                   else
                     {
                       TrilinosWrappers::SolverBicgstab solver(control);
-                      solver.solve(matrix, solution, rhs, *precondition);
+                      solver.solve(matrix, solution, rhs, precondition);
                     }
                 }
               catch (const SolverControl::NoConvergence &)
@@ -460,6 +520,7 @@ namespace PeriDEAL
                             ". Raise 'Maximum iterations', change the "
                             "preconditioner, or use 'Method = direct'."));
             }
+          release_preconditioner();
           report.iterations = control.last_step();
         }
 
@@ -471,7 +532,8 @@ namespace PeriDEAL
                                    0,
                                    report.relative_residual,
                                    report.method);
-      AssertThrow(method_name != "direct" || report.relative_residual <= 1e-6,
+      AssertThrow(method_value != Method::direct ||
+                    report.relative_residual <= 1e-6,
                   ExcMessage("The direct solver (" + report.method +
                              ") returned a solution with relative residual " +
                              format_number(report.relative_residual) +

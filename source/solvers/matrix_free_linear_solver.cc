@@ -2,13 +2,10 @@
 
 #include <deal.II/lac/diagonal_matrix.h>
 #include <deal.II/lac/precondition.h>
-#include <deal.II/lac/solver_bicgstab.h>
-#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/trilinos_precondition.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/solvers/krylov.h>
 #include <perideal/solvers/linear_solver.h>
 
 #include <cmath>
@@ -23,38 +20,31 @@ namespace PeriDEAL
     {
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
-      /// Run the selected Krylov method with @p precondition. GMRES is
-      /// right-preconditioned, so that its stopping test sees the true
-      /// residual, not the preconditioned one.
-      template <typename Vector, typename Operator, typename Preconditioner>
-      void
-      run_krylov(const std::string    &method,
-                 const unsigned int    restart_length,
-                 SolverControl        &control,
-                 const Operator       &op,
-                 Vector               &x,
-                 const Vector         &b,
-                 const Preconditioner &precondition)
+      /// deal.II's GMRES settings of the PD solves: right-preconditioned,
+      /// so that its stopping test sees the true residual, not the
+      /// preconditioned one.
+      template <typename Vector>
+      typename SolverGMRES<Vector>::AdditionalData
+      gmres_data(const unsigned int restart_length)
       {
-        if (method == "CG")
-          {
-            SolverCG<Vector> solver(control);
-            solver.solve(op, x, b, precondition);
-          }
-        else if (method == "GMRES")
-          {
-            SolverGMRES<Vector> solver(
-              control,
-              typename SolverGMRES<Vector>::AdditionalData(restart_length,
-                                                           true));
-            solver.solve(op, x, b, precondition);
-          }
-        else
-          {
-            SolverBicgstab<Vector> solver(control);
-            solver.solve(op, x, b, precondition);
-          }
+        return
+          typename SolverGMRES<Vector>::AdditionalData(restart_length, true);
       }
+
+
+      /// A preconditioner plugin as deal.II's solvers take it.
+      template <typename Vector>
+      struct PluginPreconditioner
+      {
+        const Preconditioner &preconditioner;
+
+        void
+        vmult(Vector &dst, const Vector &src) const
+        {
+          preconditioner.vmult(dst, src);
+        }
+      };
+
 
       /// Stop on a Krylov solve that did not converge, with @p fix.
       [[noreturn]] void
@@ -87,8 +77,8 @@ namespace PeriDEAL
     {
       Timer        timer;
       SolverReport report;
-      report.method =
-        method_name + " + " + preconditioner + " (matrix-free operator)";
+      report.method = method_name() + " + " + preconditioner_selected +
+                      " (matrix-free operator)";
       const double rhs_norm = rhs.l2_norm();
       internal::check_finite_rhs(rhs_norm, report.method);
       if (rhs_norm == 0)
@@ -117,53 +107,38 @@ namespace PeriDEAL
                              "diagonal entry: nodes without intact bonds. "
                              "Raise the m-ratio or check the mesh."));
 
-      SolverControl control(max_iterations, tolerance * rhs_norm);
-      const auto    krylov = [&](const auto &precondition) {
-        run_krylov(method_name,
-                   restart_length,
-                   control,
-                   op,
-                   solution,
-                   rhs,
-                   precondition);
+      PreconditionerSetup setup;
+      setup.inverse_diagonal = &inverse_diagonal;
+      setup.apply            = [&op](VectorType &dst, const VectorType &src) {
+        op.vmult(dst, src);
       };
+      setup.n_rows         = op.m();
+      setup.local_matrix   = local_matrix;
+      setup.constant_modes = constant_modes;
+      AssertThrow(!preconditioner_object->needs_local_matrix() ||
+                    local_matrix != nullptr,
+                  ExcInternalError());
+      SolverControl control(max_iterations, tolerance * rhs_norm);
       try
         {
-          if (preconditioner == "Jacobi")
-            {
-              DiagonalMatrix<VectorType> jacobi(inverse_diagonal);
-              krylov(jacobi);
-            }
-          else if (preconditioner == "Chebyshev")
-            {
-              using Chebyshev =
-                PreconditionChebyshev<Operators::ConstrainedOperator<dim>,
-                                      VectorType,
-                                      DiagonalMatrix<VectorType>>;
-              typename Chebyshev::AdditionalData data;
-              data.degree              = chebyshev_degree;
-              data.smoothing_range     = 0.; // precondition the whole spectrum
-              data.eig_cg_n_iterations = 20;
-              data.preconditioner =
-                std::make_shared<DiagonalMatrix<VectorType>>(inverse_diagonal);
-              Chebyshev chebyshev;
-              chebyshev.initialize(op, data);
-              krylov(chebyshev);
-            }
-          else if (preconditioner == "local elasticity")
-            {
-              AssertThrow(local_matrix != nullptr, ExcInternalError());
-              TrilinosWrappers::PreconditionAMG::AdditionalData data;
-              data.elliptic              = true;
-              data.constant_modes        = constant_modes;
-              data.smoother_sweeps       = smoother_sweeps;
-              data.aggregation_threshold = aggregation;
-              TrilinosWrappers::PreconditionAMG amg;
-              amg.initialize(*local_matrix, data);
-              krylov(amg);
-            }
+          const Preconditioner &preconditioner =
+            setup_preconditioner(OperatorForm::matrix_free, std::move(setup));
+          if (preconditioner.is_identity())
+            run_krylov(method_value,
+                       gmres_data<VectorType>(restart_length),
+                       control,
+                       op,
+                       solution,
+                       rhs,
+                       PreconditionIdentity());
           else
-            krylov(PreconditionIdentity());
+            run_krylov(method_value,
+                       gmres_data<VectorType>(restart_length),
+                       control,
+                       op,
+                       solution,
+                       rhs,
+                       PluginPreconditioner<VectorType>{preconditioner});
         }
       catch (const SolverControl::NoConvergence &e)
         {
@@ -176,6 +151,7 @@ namespace PeriDEAL
                                "that the Dirichlet conditions fix every rigid "
                                "motion.");
         }
+      release_preconditioner();
       report.iterations = control.last_step();
 
       // The residual actually reached, measured with the operator.
@@ -221,10 +197,11 @@ namespace PeriDEAL
       using Vector = TrilinosWrappers::MPI::Vector;
       Timer        timer;
       SolverReport report;
-      report.method = method_name + " + " + label + " (matrix-free operator)";
-      AssertThrow(method_name == "GMRES" || method_name == "BiCGStab",
+      report.method = method_name() + " + " + label + " (matrix-free operator)";
+      AssertThrow(method_value == Method::gmres ||
+                    method_value == Method::bicgstab,
                   ExcInvalidInput("Linear solver/Method",
-                                  method_name,
+                                  method_name(),
                                   "this system is not symmetric and has no "
                                   "matrix; use GMRES or BiCGStab"));
       const double rhs_norm = rhs.l2_norm();
@@ -238,16 +215,16 @@ namespace PeriDEAL
       try
         {
           if (precondition)
-            run_krylov(method_name,
-                       restart_length,
+            run_krylov(method_value,
+                       gmres_data<Vector>(restart_length),
                        control,
                        A,
                        solution,
                        rhs,
                        P);
           else
-            run_krylov(method_name,
-                       restart_length,
+            run_krylov(method_value,
+                       gmres_data<Vector>(restart_length),
                        control,
                        A,
                        solution,

@@ -10,7 +10,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/types.h>
 
-#include <perideal/solvers/linear_solver.h>
+#include <perideal/solvers/solver_report.h>
 
 #include <map>
 #include <string>

@@ -14,6 +14,7 @@
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
+#include <perideal/solvers/amg.h>
 
 #include <cstdint>
 #include <map>
@@ -233,9 +234,10 @@ namespace PeriDEAL
       std::string                                  stepping = "explicit";
       double                                       theta    = 1;
       double                          end_time = 1, given_time_step = 0;
-      double                          safety_factor  = 0.9;
-      bool                            allow_unstable = false;
-      std::string                     preconditioner = "jacobi";
+      double                          safety_factor   = 0.9;
+      bool                            allow_unstable  = false;
+      bool                            local_laplacian = false;
+      Solvers::AmgSettings            amg_settings;
       double                          tolerance      = 1e-10;
       unsigned int                    max_iterations = 1000;
       std::vector<types::boundary_id> dirichlet_ids, flux_ids;
@@ -247,7 +249,7 @@ namespace PeriDEAL
       /// The 'Function expression' of each function subsection, for
       /// messages.
       std::map<std::string, std::string> expressions;
-      bool         with_source = true, with_flux = false, compare = false;
+      bool with_source = true, with_flux = false, compare = false;
       /// The function entries, for messages.
       FunctionEntry initial_entry, source_entry, boundary_value_entry,
         boundary_flux_entry, analytical_entry;
@@ -255,11 +257,11 @@ namespace PeriDEAL
       /// evaluations of const functions record into it).
       TimeLoop            time_loop;
       mutable FiniteCheck finite_check;
-      unsigned int output_every_steps  = 0;
-      double       output_interval     = 0;
-      unsigned int history_every_steps = 10;
-      std::string  history_file;
-      double       progress_interval_s = 5;
+      unsigned int        output_every_steps  = 0;
+      double              output_interval     = 0;
+      unsigned int        history_every_steps = 10;
+      std::string         history_file;
+      double              progress_interval_s = 5;
 
       // State.
       const Discretization::NodeSet<dim> *nodes = nullptr;
@@ -297,10 +299,10 @@ namespace PeriDEAL
       VectorType                c, lc, s, rhs, row_sum;
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    laplacian;
       std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-      double       time = 0, dt = 0, dt_bound = 0, radius_estimate = 0;
+      double        time = 0, dt = 0, dt_bound = 0, radius_estimate = 0;
       std::uint64_t step_number = 0, n_steps = 0;
       unsigned int  last_iterations = 0, total_iterations = 0;
-      double       last_progress = 0, next_output_time = 0, loop_start = 0;
+      double        last_progress = 0, next_output_time = 0, loop_start = 0;
       std::vector<std::string>                    model_columns;
       std::vector<std::vector<double>>            history;
       std::vector<std::pair<double, std::string>> records;

@@ -8,39 +8,29 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/operators/constrained_operator.h>
+#include <perideal/solvers/krylov.h>
+#include <perideal/solvers/preconditioner.h>
+#include <perideal/solvers/solver_report.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace PeriDEAL
 {
-  /**
-   * Linear solvers, quasi-static drivers and (later) time integrators.
-   */
   namespace Solvers
   {
     using namespace dealii;
 
     /**
-     * What a linear solve did: the method, the number of iterations (1 for a
-     * direct solve), the relative residual \f$|b - Ax|/|b|\f$ measured after
-     * the solve (not the solver's own estimate), and the wall time.
-     */
-    struct SolverReport
-    {
-      std::string  method;
-      unsigned int iterations        = 0;
-      double       relative_residual = 0;
-      double       seconds           = 0;
-    };
-
-    /**
      * The linear solver of a PD system, chosen in the subsection
      * "Linear solver" of the input file: a sparse direct solver through
      * Trilinos Amesos (MUMPS by default), or a Krylov method (CG, GMRES,
-     * BiCGStab) from deal.II's Trilinos wrappers with an algebraic multigrid
-     * (ML), Jacobi, SSOR, ILU(k) or no preconditioner.
+     * BiCGStab) with a preconditioner plugin (Preconditioner: AMG, Jacobi,
+     * SSOR, ILU(k), Chebyshev, local elasticity, none, or a user's own).
+     * Every selection is parsed once, into Method, OperatorForm and the
+     * preconditioner object; callers ask those, never the names.
      *
      * A solve that does not reach its tolerance is an error (the run stops
      * before any output is written), and every solve reports the residual it
@@ -49,8 +39,12 @@ namespace PeriDEAL
     class LinearSolver
     {
     public:
+      LinearSolver();
+      ~LinearSolver();
+
       /**
-       * Declare the entries of the current subsection.
+       * Declare the entries of the current subsection, and one subsection
+       * per registered preconditioner with its parameters.
        */
       static void
       declare_parameters(ParameterHandler &prm);
@@ -74,11 +68,12 @@ namespace PeriDEAL
 
       /**
        * Solve \f$K x = b\f$ without the PD matrix: a Krylov method of
-       * deal.II on the matrix-free @p op, preconditioned by Jacobi or
-       * Chebyshev on its exact diagonal, or by algebraic multigrid (ML) on
-       * @p local_matrix, the local elasticity operator on the same nodes
-       * (Operators::LocalElasticityOperator; may be null for the other
-       * preconditioners). @p constant_modes as for the assembled solve.
+       * deal.II on the matrix-free @p op with the selected preconditioner,
+       * given the inverse of the exact diagonal and the operator's action,
+       * and @p local_matrix, the local elasticity operator on the same nodes
+       * (Operators::LocalElasticityOperator), where the preconditioner
+       * needs_local_matrix() (may be null otherwise). @p constant_modes as
+       * for the assembled solve.
        */
       template <int dim>
       SolverReport
@@ -96,8 +91,9 @@ namespace PeriDEAL
       /**
        * Solve \f$A x = b\f$ for a non-symmetric @p op given only by its
        * action (a matrix-free layer system): GMRES or BiCGStab ('Method'),
-       * preconditioned by @p precondition (the identity if empty), named
-       * @p label in reports. CG is refused (not symmetric); a solve that
+       * preconditioned by @p precondition (the identity if empty; the
+       * caller builds it from setup_preconditioner()), named @p label in
+       * reports. CG is refused (not symmetric); a solve that
        * does not converge stops with the method, preconditioner, iterations
        * and residual.
        */
@@ -108,29 +104,65 @@ namespace PeriDEAL
             const TrilinosWrappers::MPI::Vector &rhs,
             const std::string                   &label) const;
 
-      const std::string &
+      /// 'Method', parsed.
+      Method
       method() const;
+
+      /// 'Method' as written in the input file.
+      std::string
+      method_name() const;
 
       /// Whether 'Operator = matrix-free'.
       bool
       is_matrix_free() const;
 
+      /// The selected preconditioner (parsed, not yet set up).
+      const Preconditioner &
+      preconditioner() const;
+
       /// The preconditioner's name as given.
       const std::string &
       preconditioner_name() const;
 
+      /**
+       * Refuse this solver for an operator of @p form whose owner is named
+       * @p owner in the message (for instance "the boundary treatment
+       * 'surface nodes'"): a Krylov method other than CG where @p symmetric
+       * is false, and a preconditioner that does not support @p form. The
+       * exception names the entry, its value and what to choose instead.
+       */
+      void
+      check_form(const OperatorForm form,
+                 const bool         symmetric,
+                 const std::string &owner) const;
+
+      /**
+       * The preconditioner set up for one solve of an operator of @p form
+       * from @p setup (to which the solver's AMG settings are added);
+       * released by the solver after the solve, or by
+       * release_preconditioner().
+       */
+      const Preconditioner &
+      setup_preconditioner(const OperatorForm    form,
+                           PreconditionerSetup &&setup) const;
+
+      /// Release what setup_preconditioner() built.
+      void
+      release_preconditioner() const;
+
     private:
-      std::string  method_name      = "direct";
-      std::string  direct_package   = "MUMPS";
-      std::string  preconditioner   = "AMG";
-      bool         matrix_free      = false;
-      unsigned int chebyshev_degree = 4;
-      unsigned int ilu_fill         = 1;
-      double       tolerance        = 1e-10;
-      unsigned int max_iterations   = 10000;
-      unsigned int restart_length   = 200;
-      unsigned int smoother_sweeps  = 2;
-      double       aggregation      = 1e-4;
+      Method       method_value            = Method::direct;
+      std::string  direct_package          = "MUMPS";
+      std::string  preconditioner_selected = "AMG";
+      bool         matrix_free             = false;
+      double       tolerance               = 1e-10;
+      unsigned int max_iterations          = 10000;
+      unsigned int restart_length          = 200;
+      AmgSettings  amg;
+
+      /// The selected preconditioner; set up per solve (hence mutable: a
+      /// solve does not change the solver's parameters).
+      mutable std::unique_ptr<Preconditioner> preconditioner_object;
     };
 
     namespace internal
@@ -157,7 +189,7 @@ namespace PeriDEAL
                          const double       relative_residual,
                          const std::string &method);
     } // namespace internal
-  } // namespace Solvers
+  }   // namespace Solvers
 } // namespace PeriDEAL
 
 #endif
