@@ -412,7 +412,7 @@ namespace PeriDEAL
             double       *residual = body_residual.trilinos_vector()[0];
             for (const auto &[unknown, dof] : body_positions)
               residual[dof] = in[unknown];
-            body_preconditioner.vmult(body_correction, body_residual);
+            body_preconditioner.layer_vmult(body_correction, body_residual);
             dst = src;
             dst *= surface_scale;
             double       *out        = dst.trilinos_vector()[0];
@@ -428,7 +428,7 @@ namespace PeriDEAL
               Solvers::OperatorForm::layer,
               Solvers::PreconditionerSetup());
           precondition = [&preconditioner](Vector &dst, const Vector &src) {
-            preconditioner.vmult(dst, src);
+            preconditioner.layer_vmult(dst, src);
           };
         }
       ctx.summary.solver =

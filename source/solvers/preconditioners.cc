@@ -75,8 +75,8 @@ namespace PeriDEAL
 
 
     void
-    Preconditioner::vmult(TrilinosWrappers::MPI::Vector &,
-                          const TrilinosWrappers::MPI::Vector &) const
+    Preconditioner::layer_vmult(TrilinosWrappers::MPI::Vector &,
+                                const TrilinosWrappers::MPI::Vector &) const
     {
       AssertThrow(false, ExcInternalError());
     }
@@ -284,8 +284,8 @@ namespace PeriDEAL
         }
 
         void
-        vmult(TrilinosWrappers::MPI::Vector       &dst,
-              const TrilinosWrappers::MPI::Vector &src) const override
+        layer_vmult(TrilinosWrappers::MPI::Vector       &dst,
+                    const TrilinosWrappers::MPI::Vector &src) const override
         {
           dst = src;
         }

@@ -88,7 +88,8 @@ namespace PeriDEAL
      * The linear solver checks supports() when the input is read, so that
      * a combination that cannot run is refused before any set-up. For each
      * solve it calls initialize() once, then the vmult of the form (or
-     * hands trilinos_preconditioner() to the Trilinos methods), then
+     * hands trilinos_preconditioner() to the Trilinos methods; vmult() for
+     * the matrix-free form, layer_vmult() for the layer form), then
      * clear(), which must release what initialize() built.
      */
     class Preconditioner
@@ -143,10 +144,12 @@ namespace PeriDEAL
       vmult(VectorType &dst, const VectorType &src) const;
 
       /// OperatorForm::layer: dst = P^{-1} src, on the rows of the local
-      /// matrix where needs_local_matrix(), else on the whole vector.
+      /// matrix where needs_local_matrix(), else on the whole vector. (A
+      /// name of its own, so that a class that overrides one of the two
+      /// hides nothing.)
       virtual void
-      vmult(TrilinosWrappers::MPI::Vector       &dst,
-            const TrilinosWrappers::MPI::Vector &src) const;
+      layer_vmult(TrilinosWrappers::MPI::Vector       &dst,
+                  const TrilinosWrappers::MPI::Vector &src) const;
 
       /// Release what initialize() built.
       virtual void
