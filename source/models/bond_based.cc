@@ -60,7 +60,7 @@ namespace PeriDEAL
                 << required
                 << "\" or use the \"linear peridynamic solid\" model";
             AssertThrow(false,
-                        ExcInvalidInput("Poisson's ratio",
+                        ExcInvalidInput(this->input_path() + "Poisson's ratio",
                                         value.str(),
                                         fix.str()));
           }

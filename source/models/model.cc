@@ -75,7 +75,8 @@ namespace PeriDEAL
 
 
     void
-    ElasticConstants::parse_parameters(ParameterHandler &prm)
+    ElasticConstants::parse_parameters(ParameterHandler  &prm,
+                                       const std::string &path)
     {
       auto str = [](const double x) {
         std::ostringstream s;
@@ -88,11 +89,11 @@ namespace PeriDEAL
           bulk  = prm.get_double("Bulk modulus");
           shear = prm.get_double("Shear modulus");
           AssertThrow(bulk > 0,
-                      ExcInvalidInput("Bulk modulus",
+                      ExcInvalidInput(path + "Bulk modulus",
                                       str(bulk),
                                       "give a bulk modulus > 0"));
           AssertThrow(shear > 0,
-                      ExcInvalidInput("Shear modulus",
+                      ExcInvalidInput(path + "Shear modulus",
                                       str(shear),
                                       "give a shear modulus > 0"));
           stiffness_entry =
@@ -105,16 +106,16 @@ namespace PeriDEAL
           const double E  = prm.get_double("Young's modulus");
           const double nu = prm.get_double("Poisson's ratio");
           AssertThrow(E > 0,
-                      ExcInvalidInput("Young's modulus",
+                      ExcInvalidInput(path + "Young's modulus",
                                       str(E),
                                       "give a Young's modulus > 0"));
           AssertThrow(nu > -1 && nu < 0.5,
-                      ExcInvalidInput("Poisson's ratio",
+                      ExcInvalidInput(path + "Poisson's ratio",
                                       str(nu),
                                       "an isotropic solid needs "
                                       "-1 < nu < 0.5"));
-          bulk  = E / (3 * (1 - 2 * nu));
-          shear = E / (2 * (1 + nu));
+          bulk            = E / (3 * (1 - 2 * nu));
+          shear           = E / (2 * (1 + nu));
           stiffness_entry = {"Young's modulus", prm.get("Young's modulus")};
         }
     }
@@ -159,7 +160,7 @@ namespace PeriDEAL
     void
     IsotropicModel<dim>::parse_parameters(ParameterHandler &prm)
     {
-      constants.parse_parameters(prm);
+      constants.parse_parameters(prm, this->input_path());
       given_as_moduli =
         prm.get("Elastic constants") == "bulk and shear modulus";
       omega = InfluenceFunctionRegistry::create(prm.get("Influence function"));
@@ -167,15 +168,31 @@ namespace PeriDEAL
       given_critical_stretch = prm.get_double("Critical stretch");
       fracture_energy        = prm.get_double("Fracture energy");
       AssertThrow(mass_density > 0,
-                  ExcInvalidInput("Density",
+                  ExcInvalidInput(this->input_path() + "Density",
                                   prm.get("Density"),
                                   "give a mass density > 0"));
       AssertThrow(given_critical_stretch == 0 || fracture_energy == 0,
-                  ExcInvalidInput("Fracture energy",
+                  ExcInvalidInput(this->input_path() + "Fracture energy",
                                   prm.get("Fracture energy"),
                                   "give either 'Critical stretch' or "
                                   "'Fracture energy', not both (the other "
                                   "one = 0)"));
+    }
+
+
+    template <int dim>
+    void
+    Model<dim>::set_input_path(const std::string &input_path)
+    {
+      path = input_path;
+    }
+
+
+    template <int dim>
+    const std::string &
+    Model<dim>::input_path() const
+    {
+      return path;
     }
 
 
@@ -247,7 +264,7 @@ namespace PeriDEAL
       std::ostringstream value;
       value << G0;
       AssertThrow(false,
-                  ExcInvalidInput("Fracture energy",
+                  ExcInvalidInput(this->input_path() + "Fracture energy",
                                   value.str(),
                                   "this model has no relation between "
                                   "fracture energy and critical stretch; "

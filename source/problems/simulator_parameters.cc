@@ -297,7 +297,15 @@ namespace PeriDEAL
       prm.enter_subsection("Material model");
       model_name = prm.get("Model");
       if (model_name != "none")
-        model = Models::ModelRegistry<dim>::create(model_name, prm);
+        {
+          // As ModelRegistry::create(name, prm), with the model told where
+          // its entries are, so that its messages give their full paths.
+          model = Models::ModelRegistry<dim>::create(model_name);
+          model->set_input_path("Material model/" + model_name + "/");
+          prm.enter_subsection(model_name);
+          model->parse_parameters(prm);
+          prm.leave_subsection();
+        }
       prm.leave_subsection();
       AssertThrow(model != nullptr || !problem->uses_material_model(),
                   ExcInvalidInput("Material model/Model",

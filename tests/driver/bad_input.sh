@@ -64,17 +64,14 @@ group_entries() {
     "The entry 'Horizon/m-ration' = '3' (line 8 of 'case.prm') is not declared"
   expect_error 's/set Subdivisions = 10, 10/set Subdivisions = 10, 10, 10/' \
     "Invalid value '10, 10, 10' for the parameter 'Geometry/Subdivisions': it does not match the allowed form"
-  unnamed="source/models/model.cc names 'Poisson's ratio', not 'Material model/linear peridynamic solid/Poisson's ratio'" \
   expect_error "s/set Poisson's ratio = 0.25/set Poisson's ratio = 0.5/" \
-    "Invalid value '0.5' for the parameter 'Poisson's ratio'"
-  unnamed="source/models/model.cc names 'Poisson's ratio', not 'Material model/linear peridynamic solid/Poisson's ratio'" \
+    "Invalid value '0.5' for the parameter 'Material model/linear peridynamic solid/Poisson's ratio'"
   expect_error "s/set Poisson's ratio = 0.25/set Poisson's ratio = -1.5/" \
-    "Invalid value '-1.5' for the parameter 'Poisson's ratio'" 2
+    "Invalid value '-1.5' for the parameter 'Material model/linear peridynamic solid/Poisson's ratio'" 2
   expect_error 's/set Model = linear peridynamic solid/set Model = linear peridynamic solidd/' \
     "Invalid value 'linear peridynamic solidd' for the parameter 'Material model/Model': it does not match the allowed form"
-  unnamed="source/models/bond_based.cc names 'Poisson's ratio', not 'Material model/bond-based/Poisson's ratio'" \
   expect_error "s/set Model = linear peridynamic solid/set Model = bond-based/; s/subsection linear peridynamic solid/subsection bond-based/; s/set Poisson's ratio = 0.25/set Poisson's ratio = 0.3/" \
-    "Invalid value '0.3' for the parameter 'Poisson's ratio'"
+    "Invalid value '0.3' for the parameter 'Material model/bond-based/Poisson's ratio'"
   expect_error 's/set Dirichlet boundary ids = 0, 1, 2, 3/set Dirichlet boundary ids = 0, 7/' \
     "Invalid value '0, 7' for the parameter 'Boundary conditions/Dirichlet boundary ids': boundary id 7 does not occur in the mesh"
   expect_error 's/set Function expression = 1e-3\*x; 0/set Function expression = 1e-3*x/' \

@@ -49,12 +49,10 @@ group_regions() {
     "Invalid value '1, 0, 0, 1' for the parameter 'explicit dynamics/No-fail boxes': give the lower corner first"
   expect_error 's/  set End time = 1e-4/  set End time = 1e-4\n  set Load history = t +* 2/' \
     "Invalid value 't +* 2' for the parameter 'explicit dynamics/Load history'"
-  unnamed="source/models/model.cc names 'Fracture energy', not 'Material model/bond-based/Fracture energy'" \
   expect_error 's/    set Critical stretch = 0.01/    set Critical stretch = 0.01\n    set Fracture energy = 10/' \
-    "Invalid value '10' for the parameter 'Fracture energy': give either 'Critical stretch' or 'Fracture energy'"
-  unnamed="source/models/model.cc names 'Fracture energy', not 'Material model/linear peridynamic solid/Fracture energy'" \
+    "Invalid value '10' for the parameter 'Material model/bond-based/Fracture energy': give either 'Critical stretch' or 'Fracture energy'"
   expect_error "s/  set Model = bond-based/  set Model = linear peridynamic solid/; s/  subsection bond-based/  subsection linear peridynamic solid/; s/    set Critical stretch = 0.01/    set Fracture energy = 10/" \
-    "Invalid value '10' for the parameter 'Fracture energy': this model has no relation"
+    "Invalid value '10' for the parameter 'Material model/linear peridynamic solid/Fracture energy': this model has no relation"
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/' \
     "Invalid value 'fictitious layer' for the parameter 'Boundary treatment/Treatment': explicit dynamics supports the 'none' treatment only"
 

@@ -48,6 +48,20 @@ namespace PeriDEAL
       parse_parameters(ParameterHandler &prm) = 0;
 
       /**
+       * Say where the model's entries are in the input file (for instance
+       * "Material model/bond-based/"), before parse_parameters(), so that
+       * its messages name an entry by its full path (input_path() +
+       * entry). Empty by default: a model created outside an input file
+       * names its entries alone.
+       */
+      void
+      set_input_path(const std::string &path);
+
+      /// The path given to set_input_path().
+      const std::string &
+      input_path() const;
+
+      /**
        * Entries of the model's subsection (paths relative to it) that have
        * no effect with the parameters read, e.g. the bulk modulus when the
        * material is given by Young's modulus and Poisson's ratio; the
@@ -170,6 +184,9 @@ namespace PeriDEAL
 
       static std::string
       family_name();
+
+    private:
+      std::string path;
     };
 
     template <int dim>
@@ -212,8 +229,9 @@ namespace PeriDEAL
       static void
       declare_parameters(ParameterHandler &prm);
 
+      /// Read the entries; messages name them as @p path + entry.
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler &prm, const std::string &path = "");
     };
 
     /**
