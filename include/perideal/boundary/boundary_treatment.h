@@ -10,18 +10,15 @@
 
 namespace PeriDEAL
 {
-  namespace Problems
-  {
-    template <int dim>
-    class Simulator;
-  }
-
   namespace Boundary
   {
     using namespace dealii;
 
     template <int dim>
     class DiscreteSystem;
+
+    template <int dim>
+    struct SystemContext;
 
     /**
      * How the surface of a peridynamic body is treated (Scabbia, Zaccariotto
@@ -67,13 +64,15 @@ namespace PeriDEAL
       virtual unsigned int
       taylor_order() const = 0;
 
-      /// The discrete system of a 2D body with this treatment.
+      /// The discrete system of a 2D body with this treatment, for the run
+      /// described by @p context.
       virtual std::unique_ptr<DiscreteSystem<2>>
-      make_system(const Problems::Simulator<2> &simulator) const = 0;
+      make_system(const SystemContext<2> &context) const = 0;
 
-      /// The discrete system of a 3D body with this treatment.
+      /// The discrete system of a 3D body with this treatment, for the run
+      /// described by @p context.
       virtual std::unique_ptr<DiscreteSystem<3>>
-      make_system(const Problems::Simulator<3> &simulator) const = 0;
+      make_system(const SystemContext<3> &context) const = 0;
 
       /// The family's name in error messages.
       static std::string
