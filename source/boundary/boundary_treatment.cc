@@ -28,13 +28,13 @@ namespace PeriDEAL
         }
 
         std::unique_ptr<DiscreteSystem<2>>
-        make_system(const SystemContext<2> &) const override
+        make_system_2d(const std::string &) const override
         {
           return std::make_unique<NodalSystem<2>>();
         }
 
         std::unique_ptr<DiscreteSystem<3>>
-        make_system(const SystemContext<3> &) const override
+        make_system_3d(const std::string &) const override
         {
           return std::make_unique<NodalSystem<3>>();
         }
@@ -71,17 +71,17 @@ namespace PeriDEAL
         }
 
         std::unique_ptr<DiscreteSystem<2>>
-        make_system(const SystemContext<2> &context) const override
+        make_system_2d(const std::string &treatment_name) const override
         {
-          return std::make_unique<LayerSystem<2>>(context.treatment_name,
+          return std::make_unique<LayerSystem<2>>(treatment_name,
                                                   with_surface_nodes(),
                                                   order);
         }
 
         std::unique_ptr<DiscreteSystem<3>>
-        make_system(const SystemContext<3> &context) const override
+        make_system_3d(const std::string &treatment_name) const override
         {
-          return std::make_unique<LayerSystem<3>>(context.treatment_name,
+          return std::make_unique<LayerSystem<3>>(treatment_name,
                                                   with_surface_nodes(),
                                                   order);
         }

@@ -66,7 +66,7 @@ namespace PeriDEAL
                         "with analytical solution = true', or leave the entry "
                         "empty"));
       simulator.get_boundary_treatment()
-        .make_system(simulator.system_context())
+        .template make_system<dim>(simulator.get_boundary_treatment_name())
         ->check_input(simulator.get_linear_solver());
     }
 
@@ -109,7 +109,8 @@ namespace PeriDEAL
               "; they do not depend on t")
         << std::endl;
       const Boundary::SystemContext<dim> context = simulator.system_context();
-      system = simulator.get_boundary_treatment().make_system(context);
+      system = simulator.get_boundary_treatment().template make_system<dim>(
+        simulator.get_boundary_treatment_name());
       system->setup(context);
       system->solve_linear(context, displacement);
       postprocess(simulator);

@@ -430,14 +430,6 @@ namespace PeriDEAL
 
 
     template <int dim>
-    Boundary::SystemContext<dim>
-    Simulator<dim>::system_context() const
-    {
-      return const_cast<Simulator<dim> *>(this)->system_context();
-    }
-
-
-    template <int dim>
     bool
     Simulator<dim>::couples_two_horizons() const
     {

@@ -17,9 +17,6 @@ namespace PeriDEAL
     template <int dim>
     class DiscreteSystem;
 
-    template <int dim>
-    struct SystemContext;
-
     /**
      * How the surface of a peridynamic body is treated (Scabbia, Zaccariotto
      * and Galvanetto 2023, "A new surface node method ...").
@@ -64,15 +61,30 @@ namespace PeriDEAL
       virtual unsigned int
       taylor_order() const = 0;
 
-      /// The discrete system of a 2D body with this treatment, for the run
-      /// described by @p context.
+      /**
+       * A new discrete system of a 2D body with this treatment, not yet set
+       * up: the problem type then drives it with the run's SystemContext
+       * (DiscreteSystem::setup(), solve_linear()). @p treatment_name is the
+       * treatment's name in the input file, for messages.
+       */
       virtual std::unique_ptr<DiscreteSystem<2>>
-      make_system(const SystemContext<2> &context) const = 0;
+      make_system_2d(const std::string &treatment_name) const = 0;
 
-      /// The discrete system of a 3D body with this treatment, for the run
-      /// described by @p context.
+      /// The same for a 3D body.
       virtual std::unique_ptr<DiscreteSystem<3>>
-      make_system(const SystemContext<3> &context) const = 0;
+      make_system_3d(const std::string &treatment_name) const = 0;
+
+      /// make_system_2d() or make_system_3d(), for templates over @p dim.
+      template <int dim>
+      std::unique_ptr<DiscreteSystem<dim>>
+      make_system(const std::string &treatment_name) const
+      {
+        static_assert(dim == 2 || dim == 3, "2D and 3D only");
+        if constexpr (dim == 2)
+          return make_system_2d(treatment_name);
+        else
+          return make_system_3d(treatment_name);
+      }
 
       /// The family's name in error messages.
       static std::string

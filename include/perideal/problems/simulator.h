@@ -201,15 +201,6 @@ namespace PeriDEAL
       Boundary::SystemContext<dim>
       system_context();
 
-      /**
-       * The same for the checks before the run (problem types' check_input(),
-       * which get a const simulator, to make the boundary treatment's
-       * system): the context's log, timer, summary and hooks still write to
-       * this simulator, so a caller with a const simulator must only read
-       * from it.
-       */
-      Boundary::SystemContext<dim>
-      system_context() const;
       /// @}
 
     private:
