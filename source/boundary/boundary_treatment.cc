@@ -1,7 +1,7 @@
 #include <perideal/boundary/boundary_treatment.h>
 #include <perideal/boundary/layer_system.h>
 #include <perideal/boundary/nodal_system.h>
-#include <perideal/problems/simulator.h>
+#include <perideal/boundary/system_context.h>
 
 namespace PeriDEAL
 {
@@ -28,13 +28,13 @@ namespace PeriDEAL
         }
 
         std::unique_ptr<DiscreteSystem<2>>
-        make_system(const Problems::Simulator<2> &) const override
+        make_system_2d(const std::string &) const override
         {
           return std::make_unique<NodalSystem<2>>();
         }
 
         std::unique_ptr<DiscreteSystem<3>>
-        make_system(const Problems::Simulator<3> &) const override
+        make_system_3d(const std::string &) const override
         {
           return std::make_unique<NodalSystem<3>>();
         }
@@ -71,21 +71,19 @@ namespace PeriDEAL
         }
 
         std::unique_ptr<DiscreteSystem<2>>
-        make_system(const Problems::Simulator<2> &simulator) const override
+        make_system_2d(const std::string &treatment_name) const override
         {
-          return std::make_unique<LayerSystem<2>>(
-            simulator.get_boundary_treatment_name(),
-            with_surface_nodes(),
-            order);
+          return std::make_unique<LayerSystem<2>>(treatment_name,
+                                                  with_surface_nodes(),
+                                                  order);
         }
 
         std::unique_ptr<DiscreteSystem<3>>
-        make_system(const Problems::Simulator<3> &simulator) const override
+        make_system_3d(const std::string &treatment_name) const override
         {
-          return std::make_unique<LayerSystem<3>>(
-            simulator.get_boundary_treatment_name(),
-            with_surface_nodes(),
-            order);
+          return std::make_unique<LayerSystem<3>>(treatment_name,
+                                                  with_surface_nodes(),
+                                                  order);
         }
 
       protected:

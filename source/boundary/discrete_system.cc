@@ -6,14 +6,14 @@ namespace PeriDEAL
   {
     template <int dim>
     void
-    DiscreteSystem<dim>::check_input(const Problems::Simulator<dim> &) const
+    DiscreteSystem<dim>::check_input(const Solvers::LinearSolver &) const
     {}
 
 
     template <int dim>
     std::vector<IO::NodeField>
     DiscreteSystem<dim>::node_fields(
-      const Problems::Simulator<dim> &,
+      const SystemContext<dim> &,
       const TrilinosWrappers::MPI::Vector &) const
     {
       return {};

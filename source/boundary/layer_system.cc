@@ -4,9 +4,9 @@
 
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/layer_system.h>
+#include <perideal/boundary/system_context.h>
 #include <perideal/discretization/lattice.h>
 #include <perideal/operators/local_elasticity_operator.h>
-#include <perideal/problems/simulator_context.h>
 
 #include <iomanip>
 #include <map>
@@ -29,16 +29,16 @@ namespace PeriDEAL
     template <int dim>
     void
     LayerSystem<dim>::check_input(
-      const Problems::Simulator<dim> &simulator) const
+      const Solvers::LinearSolver &linear_solver) const
     {
-      const auto &solver = simulator.get_linear_solver();
-      if (!solver.is_matrix_free())
+      if (!linear_solver.is_matrix_free())
         return;
       // Without a matrix: the factored operator is not symmetric and has
       // no diagonal.
-      solver.check_form(Solvers::OperatorForm::layer,
-                        false,
-                        "the boundary treatment '" + treatment_name + "'");
+      linear_solver.check_form(Solvers::OperatorForm::layer,
+                               false,
+                               "the boundary treatment '" + treatment_name +
+                                 "'");
     }
 
 
@@ -79,16 +79,16 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LayerSystem<dim>::setup(Problems::Simulator<dim> &simulator)
+    LayerSystem<dim>::setup(const SystemContext<dim> &context)
     {
-      auto &summary = simulator.get_summary();
+      auto &summary = context.summary;
       {
-        TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
-        layer_operator.reinit(simulator.get_dof_handler(),
-                              simulator.get_nodes(),
-                              simulator.get_model(),
-                              simulator.get_horizon(),
-                              simulator.get_partial_volume(),
+        TimerOutput::Scope scope(context.timer, "operator setup");
+        layer_operator.reinit(context.dof_handler,
+                              context.nodes,
+                              context.model,
+                              context.horizon,
+                              context.partial_volume,
                               with_surface_nodes,
                               taylor_order);
       }
@@ -101,59 +101,58 @@ namespace PeriDEAL
            << summary.n_fictitious_nodes << " fictitious, "
            << summary.n_surface_nodes << " surface nodes; "
            << layer_operator.n_neighbours_per_node()
-           << " bonds per node, weights by '"
-           << simulator.get_partial_volume_name() << "'; boundary treatment '"
-           << simulator.get_boundary_treatment_name() << "', Taylor order "
-           << taylor_order;
-      simulator.print_progress(line.str());
+           << " bonds per node, weights by '" << context.partial_volume_name
+           << "'; boundary treatment '" << context.treatment_name
+           << "', Taylor order " << taylor_order;
+      context.print_progress(line.str());
     }
 
 
     template <int dim>
     void
-    LayerSystem<dim>::solve_linear(Problems::Simulator<dim>      &simulator,
+    LayerSystem<dim>::solve_linear(const SystemContext<dim>      &context,
                                    TrilinosWrappers::MPI::Vector &displacement)
     {
-      const auto      ctx         = Problems::internal::context_of(simulator);
-      const IndexSet &owned_dofs  = ctx.dof_handler.locally_owned_dofs();
+      const IndexSet &owned_dofs  = context.dof_handler.locally_owned_dofs();
       const IndexSet &owned       = layer_operator.owned_unknowns();
-      const bool      matrix_free = ctx.linear_solver.is_matrix_free();
+      const bool      matrix_free = context.linear_solver.is_matrix_free();
       std::map<types::global_dof_index, double> prescribed;
       {
-        TimerOutput::Scope scope(ctx.timer, "assembly");
-        system_rhs.reinit(owned, ctx.communicator);
-        ctx.boundary_conditions.check_boundary_ids(ctx.triangulation);
+        TimerOutput::Scope scope(context.timer, "assembly");
+        system_rhs.reinit(owned, context.communicator);
+        context.boundary_conditions.check_boundary_ids(context.triangulation);
         if (with_surface_nodes)
           {
-            // Body force on the body ctx.nodes, boundary conditions on the
-            // surface ctx.nodes: Dirichlet values where prescribed, the
+            // Body force on the body nodes, boundary conditions on the
+            // surface nodes: Dirichlet values where prescribed, the
             // traction times the face area in the force-flux equation
             // otherwise.
-            for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+            for (unsigned int i = 0; i < context.nodes.n_owned(); ++i)
               {
                 const Tensor<1, dim> b =
-                  ctx.boundary_conditions.body_force_value(
-                    ctx.nodes[i].location);
+                  context.boundary_conditions.body_force_value(
+                    context.nodes[i].location);
                 for (unsigned int c = 0; c < dim; ++c)
-                  system_rhs[layer_operator.unknown_index(ctx.nodes[i], c)] =
-                    ctx.nodes[i].volume() * b[c];
+                  system_rhs[layer_operator.unknown_index(context.nodes[i],
+                                                          c)] =
+                    context.nodes[i].volume() * b[c];
               }
             const auto &mask =
-              ctx.boundary_conditions.dirichlet_component_mask();
+              context.boundary_conditions.dirichlet_component_mask();
             for (const auto &node : layer_operator.owned_surface_nodes())
               {
                 const bool dirichlet =
-                  ctx.boundary_conditions.is_dirichlet_boundary(
+                  context.boundary_conditions.is_dirichlet_boundary(
                     node.boundary_id);
                 const Tensor<1, dim> g =
                   dirichlet ?
-                    ctx.boundary_conditions.dirichlet_value(node.location) :
+                    context.boundary_conditions.dirichlet_value(node.location) :
                     Tensor<1, dim>();
                 const Tensor<1, dim> p =
-                  ctx.boundary_conditions.is_traction_boundary(
+                  context.boundary_conditions.is_traction_boundary(
                     node.boundary_id) ?
-                    ctx.boundary_conditions.traction_value(node.location,
-                                                           node.normal()) :
+                    context.boundary_conditions.traction_value(node.location,
+                                                               node.normal()) :
                     Tensor<1, dim>();
                 for (unsigned int c = 0; c < dim; ++c)
                   if (dirichlet && mask[c])
@@ -161,9 +160,9 @@ namespace PeriDEAL
                   else
                     system_rhs[node.first_unknown + c] = node.area * p[c];
               }
-            ctx.summary.n_constrained_nodes =
+            context.summary.n_constrained_nodes =
               Utilities::MPI::sum(static_cast<unsigned int>(prescribed.size()),
-                                  ctx.communicator);
+                                  context.communicator);
           }
         else
           {
@@ -173,47 +172,48 @@ namespace PeriDEAL
             // whose every face is fully prescribed are well posed.
             bool all_prescribed = true;
             for (const bool c :
-                 ctx.boundary_conditions.dirichlet_component_mask())
+                 context.boundary_conditions.dirichlet_component_mask())
               all_prescribed = all_prescribed && c;
-            for (const auto &cell : ctx.triangulation.active_cell_iterators())
+            for (const auto &cell :
+                 context.triangulation.active_cell_iterators())
               if (cell->is_locally_owned())
                 for (const unsigned int f : cell->face_indices())
                   if (cell->at_boundary(f) &&
-                      !ctx.boundary_conditions.is_dirichlet_boundary(
+                      !context.boundary_conditions.is_dirichlet_boundary(
                         cell->face(f)->boundary_id()))
                     all_prescribed = false;
             AssertThrow(
-              Utilities::MPI::min(all_prescribed ? 1 : 0, ctx.communicator) ==
-                1,
+              Utilities::MPI::min(all_prescribed ? 1 : 0,
+                                  context.communicator) == 1,
               ExcInvalidInput(
                 "Boundary treatment/Treatment",
-                ctx.treatment_name,
+                context.treatment_name,
                 "a fictitious layer alone cannot carry free or loaded faces "
                 "(with completed neighbourhoods homogeneous strains cost no "
                 "energy, so the system is singular): list every boundary id "
                 "under 'Dirichlet boundary ids' with all components, or use "
                 "'surface nodes', whose force-flux equations carry "
                 "tractions and free faces"));
-            // Conditions as without ctx.treatment: Dirichlet layers. The
+            // Conditions as without treatment: Dirichlet layers. The
             // unknowns are the DoFs.
-            ctx.boundary_conditions.make_constraints(ctx.dof_handler,
-                                                     ctx.nodes,
-                                                     ctx.horizon,
-                                                     constraints);
-            load.reinit(owned_dofs, ctx.communicator);
-            ctx.boundary_conditions.add_load(ctx.dof_handler,
-                                             ctx.nodes,
-                                             constraints,
-                                             load);
+            context.boundary_conditions.make_constraints(context.dof_handler,
+                                                         context.nodes,
+                                                         context.horizon,
+                                                         constraints);
+            load.reinit(owned_dofs, context.communicator);
+            context.boundary_conditions.add_load(context.dof_handler,
+                                                 context.nodes,
+                                                 constraints,
+                                                 load);
             for (const auto dof : owned_dofs)
               if (constraints.is_constrained(dof))
                 prescribed[dof] = constraints.get_inhomogeneity(dof);
               else
                 system_rhs[dof] = load[dof];
-            ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
-              ctx.boundary_conditions.n_constrained_nodes(ctx.nodes,
-                                                          constraints),
-              ctx.communicator);
+            context.summary.n_constrained_nodes = Utilities::MPI::sum(
+              context.boundary_conditions.n_constrained_nodes(context.nodes,
+                                                              constraints),
+              context.communicator);
           }
         system_rhs.compress(VectorOperation::insert);
         load = system_rhs; // the external loads, before elimination
@@ -222,46 +222,48 @@ namespace PeriDEAL
         else
           layer_operator.assemble(prescribed, system_matrix, system_rhs);
       }
-      ctx.summary.n_unknowns = owned.size();
-      ctx.summary.n_nonzeros =
+      context.summary.n_unknowns = owned.size();
+      context.summary.n_nonzeros =
         matrix_free ? 0 : system_matrix.n_nonzero_elements();
-      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                << simulator.elapsed() << " s] "
-                << (matrix_free ? "factored operator (no product matrix): " :
-                                  "assembled: ")
-                << ctx.summary.n_unknowns << " unknowns, "
-                << ctx.summary.n_nonzeros << " nonzeros, "
-                << ctx.summary.n_constrained_nodes
-                << (with_surface_nodes ? " prescribed surface-node components" :
-                                         " nodes in Dirichlet layers")
-                << " (non-symmetric)" << std::endl;
+      context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                    << context.elapsed() << " s] "
+                    << (matrix_free ?
+                          "factored operator (no product matrix): " :
+                          "assembled: ")
+                    << context.summary.n_unknowns << " unknowns, "
+                    << context.summary.n_nonzeros << " nonzeros, "
+                    << context.summary.n_constrained_nodes
+                    << (with_surface_nodes ?
+                          " prescribed surface-node components" :
+                          " nodes in Dirichlet layers")
+                    << " (non-symmetric)" << std::endl;
 
-      TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
+      TrilinosWrappers::MPI::Vector solution(owned, context.communicator);
       if (matrix_free)
-        solve_matrix_free(simulator, prescribed, solution);
+        solve_matrix_free(context, prescribed, solution);
       else
         {
-          TimerOutput::Scope scope(ctx.timer, "solve");
+          TimerOutput::Scope scope(context.timer, "solve");
           // Rigid translations for AMG: the component of each unknown.
           std::vector<std::vector<bool>> constant_modes(
             dim,
             std::vector<bool>(owned.n_elements(), false));
-          for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+          for (unsigned int i = 0; i < context.nodes.n_owned(); ++i)
             for (unsigned int c = 0; c < dim; ++c)
               constant_modes[c][owned.index_within_set(
-                layer_operator.unknown_index(ctx.nodes[i], c))] = true;
+                layer_operator.unknown_index(context.nodes[i], c))] = true;
           for (const auto &node : layer_operator.owned_surface_nodes())
             for (unsigned int c = 0; c < dim; ++c)
               constant_modes[c]
                             [owned.index_within_set(node.first_unknown + c)] =
                               true;
-          ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
-                                                       solution,
-                                                       system_rhs,
-                                                       constant_modes,
-                                                       false);
+          context.summary.solver = context.linear_solver.solve(system_matrix,
+                                                               solution,
+                                                               system_rhs,
+                                                               constant_modes,
+                                                               false);
         }
-      Problems::internal::print_solve(simulator, "");
+      print_solve(context, "");
       // Equilibrium with the factored operator (bond forces of the
       // completed neighbourhoods, K = A E + B X D E applied factor by
       // factor), not with the assembled and eliminated matrix that the
@@ -270,8 +272,8 @@ namespace PeriDEAL
       // with completed neighbourhoods a linear field has K u = 0
       // everywhere, so |K u| is no scale.
       {
-        TrilinosWrappers::MPI::Vector ku(owned, ctx.communicator),
-          r(owned, ctx.communicator), kr(owned, ctx.communicator);
+        TrilinosWrappers::MPI::Vector ku(owned, context.communicator),
+          r(owned, context.communicator), kr(owned, context.communicator);
         layer_operator.apply(solution, ku);
         for (const auto k : owned)
           r[k] = std::sin(1.3 * k + 0.2);
@@ -284,22 +286,22 @@ namespace PeriDEAL
         for (const auto k : owned)
           if (prescribed.find(k) == prescribed.end())
             residual2 += std::pow(ku[k] - load[k], 2);
-        residual2 = Utilities::MPI::sum(residual2, ctx.communicator);
-        ctx.summary.equilibrium_residual =
+        residual2 = Utilities::MPI::sum(residual2, context.communicator);
+        context.summary.equilibrium_residual =
           scale > 0 ? std::sqrt(residual2) / scale : 0.;
       }
-      Problems::internal::print_equilibrium(simulator, "factored operator");
+      print_equilibrium(context, "factored operator");
 
       // Body displacements back to the DoF numbering, surface ones aside.
-      TrilinosWrappers::MPI::Vector body(owned_dofs, ctx.communicator);
-      for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+      TrilinosWrappers::MPI::Vector body(owned_dofs, context.communicator);
+      for (unsigned int i = 0; i < context.nodes.n_owned(); ++i)
         for (unsigned int c = 0; c < dim; ++c)
-          body[ctx.nodes[i].dofs[c]] =
-            solution[layer_operator.unknown_index(ctx.nodes[i], c)];
+          body[context.nodes[i].dofs[c]] =
+            solution[layer_operator.unknown_index(context.nodes[i], c)];
       body.compress(VectorOperation::insert);
       displacement.reinit(owned_dofs,
-                          ctx.nodes.relevant_dofs(),
-                          ctx.communicator);
+                          context.nodes.relevant_dofs(),
+                          context.communicator);
       displacement = body;
       surface_displacement.clear();
       for (const auto &node : layer_operator.owned_surface_nodes())
@@ -315,15 +317,14 @@ namespace PeriDEAL
     template <int dim>
     void
     LayerSystem<dim>::solve_matrix_free(
-      Problems::Simulator<dim>                        &simulator,
+      const SystemContext<dim>                        &context,
       const std::map<types::global_dof_index, double> &prescribed,
       TrilinosWrappers::MPI::Vector                   &solution)
     {
-      const auto      ctx   = Problems::internal::context_of(simulator);
       const IndexSet &owned = layer_operator.owned_unknowns();
-      const MPI_Comm  comm  = ctx.communicator;
+      const MPI_Comm  comm  = context.communicator;
       using Vector          = TrilinosWrappers::MPI::Vector;
-      TimerOutput::Scope scope(ctx.timer, "solve");
+      TimerOutput::Scope scope(context.timer, "solve");
 
       // Prescribed unknowns eliminated: x = g + y with y = 0 there; the
       // operator is K on free rows and the identity on prescribed ones.
@@ -365,48 +366,49 @@ namespace PeriDEAL
       Vector                             body_residual, body_correction;
       double                             surface_scale = 1;
       std::vector<std::pair<unsigned int, unsigned int>> body_positions;
-      if (ctx.linear_solver.preconditioner().needs_local_matrix())
+      if (context.linear_solver.preconditioner().needs_local_matrix())
         {
-          TimerOutput::Scope           inner(ctx.timer, "preconditioner setup");
+          TimerOutput::Scope inner(context.timer, "preconditioner setup");
           Discretization::Lattice<dim> lattice;
-          lattice.reinit(ctx.nodes);
+          lattice.reinit(context.nodes);
           AffineConstraints<double> layers;
           if (!with_surface_nodes)
             layers.copy_from(constraints);
           else
-            ctx.boundary_conditions.make_constraints(ctx.dof_handler,
-                                                     ctx.nodes,
-                                                     ctx.horizon,
-                                                     layers);
-          Operators::LocalElasticityOperator<dim>::assemble(ctx.nodes,
+            context.boundary_conditions.make_constraints(context.dof_handler,
+                                                         context.nodes,
+                                                         context.horizon,
+                                                         layers);
+          Operators::LocalElasticityOperator<dim>::assemble(context.nodes,
                                                             lattice,
-                                                            ctx.model,
+                                                            context.model,
                                                             layers,
                                                             local_matrix);
           Solvers::PreconditionerSetup setup;
           setup.local_matrix = &local_matrix;
-          DoFTools::extract_constant_modes(ctx.dof_handler,
+          DoFTools::extract_constant_modes(context.dof_handler,
                                            ComponentMask(dim, true),
                                            setup.constant_modes);
           const Solvers::Preconditioner &body_preconditioner =
-            ctx.linear_solver.setup_preconditioner(Solvers::OperatorForm::layer,
-                                                   std::move(setup));
+            context.linear_solver.setup_preconditioner(
+              Solvers::OperatorForm::layer,
+              std::move(setup));
           double diagonal_sum = 0;
-          for (const auto dof : ctx.dof_handler.locally_owned_dofs())
+          for (const auto dof : context.dof_handler.locally_owned_dofs())
             diagonal_sum += local_matrix.diag_element(dof);
-          const double n_dofs = ctx.dof_handler.n_dofs();
+          const double n_dofs = context.dof_handler.n_dofs();
           surface_scale = n_dofs / Utilities::MPI::sum(diagonal_sum, comm);
-          body_residual.reinit(ctx.dof_handler.locally_owned_dofs(), comm);
+          body_residual.reinit(context.dof_handler.locally_owned_dofs(), comm);
           body_correction.reinit(body_residual);
           // Local positions of the body unknowns and of their DoFs, found
           // once: the preconditioner runs every iteration.
-          for (unsigned int i = 0; i < ctx.nodes.n_owned(); ++i)
+          for (unsigned int i = 0; i < context.nodes.n_owned(); ++i)
             for (unsigned int c = 0; c < dim; ++c)
               body_positions.emplace_back(
                 owned.index_within_set(
-                  layer_operator.unknown_index(ctx.nodes[i], c)),
-                ctx.dof_handler.locally_owned_dofs().index_within_set(
-                  ctx.nodes[i].dofs[c]));
+                  layer_operator.unknown_index(context.nodes[i], c)),
+                context.dof_handler.locally_owned_dofs().index_within_set(
+                  context.nodes[i].dofs[c]));
           precondition = [&](Vector &dst, const Vector &src) {
             const double *in       = src.trilinos_vector()[0];
             double       *residual = body_residual.trilinos_vector()[0];
@@ -421,23 +423,23 @@ namespace PeriDEAL
               out[unknown] = correction[dof];
           };
         }
-      else if (!ctx.linear_solver.preconditioner().is_identity())
+      else if (!context.linear_solver.preconditioner().is_identity())
         {
           const Solvers::Preconditioner &preconditioner =
-            ctx.linear_solver.setup_preconditioner(
+            context.linear_solver.setup_preconditioner(
               Solvers::OperatorForm::layer,
               Solvers::PreconditionerSetup());
           precondition = [&preconditioner](Vector &dst, const Vector &src) {
             preconditioner.layer_vmult(dst, src);
           };
         }
-      ctx.summary.solver =
-        ctx.linear_solver.solve(op,
-                                precondition,
-                                solution,
-                                rhs,
-                                ctx.linear_solver.preconditioner_name());
-      ctx.linear_solver.release_preconditioner();
+      context.summary.solver = context.linear_solver.solve(
+        op,
+        precondition,
+        solution,
+        rhs,
+        context.linear_solver.preconditioner_name());
+      context.linear_solver.release_preconditioner();
       solution += g;
     }
 

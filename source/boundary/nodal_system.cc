@@ -6,8 +6,8 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <perideal/boundary/nodal_system.h>
+#include <perideal/boundary/system_context.h>
 #include <perideal/operators/local_elasticity_operator.h>
-#include <perideal/problems/simulator_context.h>
 
 #include <iomanip>
 #include <limits>
@@ -18,46 +18,46 @@ namespace PeriDEAL
   {
     template <int dim>
     void
-    NodalSystem<dim>::setup(Problems::Simulator<dim> &simulator)
+    NodalSystem<dim>::setup(const SystemContext<dim> &context)
     {
       // Both operator paths evaluate full neighbourhoods with the shared
       // stencil: their lists need not be stored.
-      simulator.setup_neighbor_lists(false);
-      TimerOutput::Scope scope(simulator.get_timer(), "operator setup");
-      const auto        &nodes = simulator.get_nodes();
-      const auto        &lists = simulator.get_neighbor_lists();
+      context.setup_neighbor_lists(false);
+      TimerOutput::Scope scope(context.timer, "operator setup");
+      const auto        &nodes = context.nodes;
+      const auto        &lists = context.neighbor_lists;
       bond_state.reinit(nodes, lists);
       bond_operator.reinit(nodes,
                            lists,
-                           simulator.get_model(),
-                           simulator.get_horizon(),
+                           context.model,
+                           context.horizon,
                            &bond_state);
     }
 
 
     template <int dim>
     void
-    NodalSystem<dim>::solve_linear(Problems::Simulator<dim>      &simulator,
+    NodalSystem<dim>::solve_linear(const SystemContext<dim>      &context,
                                    TrilinosWrappers::MPI::Vector &displacement)
     {
-      if (simulator.get_linear_solver().is_matrix_free())
-        solve_matrix_free(simulator, displacement);
+      if (context.linear_solver.is_matrix_free())
+        solve_matrix_free(context, displacement);
       else
-        solve_assembled(simulator, displacement);
+        solve_assembled(context, displacement);
     }
 
 
     template <int dim>
     std::vector<IO::NodeField>
     NodalSystem<dim>::node_fields(
-      const Problems::Simulator<dim>      &simulator,
+      const SystemContext<dim>            &context,
       const TrilinosWrappers::MPI::Vector &displacement) const
     {
-      const auto         &nodes = simulator.get_nodes();
+      const auto         &nodes = context.nodes;
       std::vector<double> dilatation;
       VectorType          u;
       bond_operator.initialize_dof_vector(u);
-      for (const auto dof : simulator.get_dof_handler().locally_owned_dofs())
+      for (const auto dof : context.dof_handler.locally_owned_dofs())
         u[dof] = displacement[dof];
       u.update_ghost_values();
       bond_operator.compute_dilatation(u, dilatation);
@@ -68,8 +68,7 @@ namespace PeriDEAL
         {
           theta.values.push_back(dilatation[i]);
           m.values.push_back(weighted_volumes[i]);
-          neighbours.values.push_back(
-            simulator.get_neighbor_lists().n_bonds(i));
+          neighbours.values.push_back(context.neighbor_lists.n_bonds(i));
         }
       return {theta, m, neighbours};
     }
@@ -90,129 +89,135 @@ namespace PeriDEAL
     template <int dim>
     void
     NodalSystem<dim>::make_constraints_and_load(
-      Problems::Simulator<dim> &simulator)
+      const SystemContext<dim> &context)
     {
-      const auto ctx = Problems::internal::context_of(simulator);
-      ctx.boundary_conditions.make_constraints(ctx.dof_handler,
-                                               ctx.nodes,
-                                               ctx.horizon,
-                                               constraints);
-      check_rigid_motions(simulator);
-      load.reinit(ctx.dof_handler.locally_owned_dofs(), ctx.communicator);
-      ctx.boundary_conditions.add_load(ctx.dof_handler,
-                                       ctx.nodes,
-                                       constraints,
-                                       load);
+      context.boundary_conditions.make_constraints(context.dof_handler,
+                                                   context.nodes,
+                                                   context.horizon,
+                                                   constraints);
+      check_rigid_motions(context);
+      load.reinit(context.dof_handler.locally_owned_dofs(),
+                  context.communicator);
+      context.boundary_conditions.add_load(context.dof_handler,
+                                           context.nodes,
+                                           constraints,
+                                           load);
     }
 
 
     template <int dim>
     void
     NodalSystem<dim>::solve_matrix_free(
-      Problems::Simulator<dim>      &simulator,
+      const SystemContext<dim>      &context,
       TrilinosWrappers::MPI::Vector &displacement)
     {
-      const auto ctx         = Problems::internal::context_of(simulator);
-      using VectorType       = LinearAlgebra::distributed::Vector<double>;
-      ctx.summary.n_unknowns = ctx.dof_handler.n_dofs();
-      const IndexSet &owned  = ctx.dof_handler.locally_owned_dofs();
+      using VectorType           = LinearAlgebra::distributed::Vector<double>;
+      context.summary.n_unknowns = context.dof_handler.n_dofs();
+      const IndexSet &owned      = context.dof_handler.locally_owned_dofs();
       VectorType      load_vector, rhs, prescribed, solution;
       {
-        TimerOutput::Scope scope(ctx.timer, "assembly");
-        make_constraints_and_load(simulator);
+        TimerOutput::Scope scope(context.timer, "assembly");
+        make_constraints_and_load(context);
         constrained_operator.initialize(bond_operator, constraints);
         constrained_operator.initialize_dof_vector(load_vector);
         for (const auto dof : owned)
           load_vector[dof] = load[dof];
         constrained_operator.lift(load_vector, rhs, prescribed);
       }
-      ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
-        ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
-        ctx.communicator);
+      context.summary.n_constrained_nodes = Utilities::MPI::sum(
+        context.boundary_conditions.n_constrained_nodes(context.nodes,
+                                                        constraints),
+        context.communicator);
       const unsigned int n_stencil =
-        Utilities::MPI::sum(bond_operator.n_stencil_nodes(), ctx.communicator);
+        Utilities::MPI::sum(bond_operator.n_stencil_nodes(),
+                            context.communicator);
       const std::size_t visits =
-        Utilities::MPI::sum(bond_operator.n_bond_visits(), ctx.communicator);
+        Utilities::MPI::sum(bond_operator.n_bond_visits(),
+                            context.communicator);
       const double operator_mb =
         Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
-                            ctx.communicator);
-      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                << simulator.elapsed()
-                << " s] matrix-free operator: " << ctx.dof_handler.n_dofs()
-                << " DoFs, " << n_stencil << " nodes on the shared stencil, "
-                << ctx.summary.n_nodes - n_stencil << " on lists, "
-                << ctx.summary.n_constrained_nodes
-                << " nodes in Dirichlet layers; " << visits
-                << " bond visits per application, " << std::setprecision(1)
-                << operator_mb << " MB, " << MultithreadInfo::n_threads()
-                << " thread(s) per process" << std::defaultfloat << std::endl;
+                            context.communicator);
+      context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                    << context.elapsed() << " s] matrix-free operator: "
+                    << context.dof_handler.n_dofs() << " DoFs, " << n_stencil
+                    << " nodes on the shared stencil, "
+                    << context.summary.n_nodes - n_stencil << " on lists, "
+                    << context.summary.n_constrained_nodes
+                    << " nodes in Dirichlet layers; " << visits
+                    << " bond visits per application, " << std::setprecision(1)
+                    << operator_mb << " MB, " << MultithreadInfo::n_threads()
+                    << " thread(s) per process" << std::defaultfloat
+                    << std::endl;
 
       std::vector<std::vector<bool>> constant_modes;
-      if (ctx.linear_solver.preconditioner().needs_local_matrix())
+      if (context.linear_solver.preconditioner().needs_local_matrix())
         {
-          TimerOutput::Scope scope(ctx.timer, "preconditioner setup");
+          TimerOutput::Scope scope(context.timer, "preconditioner setup");
           Operators::LocalElasticityOperator<dim>::assemble(
-            ctx.nodes,
-            ctx.neighbor_lists.lattice(),
-            ctx.model,
+            context.nodes,
+            context.neighbor_lists.lattice(),
+            context.model,
             constraints,
             local_matrix);
-          DoFTools::extract_constant_modes(ctx.dof_handler,
+          DoFTools::extract_constant_modes(context.dof_handler,
                                            ComponentMask(dim, true),
                                            constant_modes);
         }
       constrained_operator.initialize_dof_vector(solution);
       {
-        TimerOutput::Scope scope(ctx.timer, "solve");
-        ctx.summary.solver = ctx.linear_solver.solve(constrained_operator,
-                                                     solution,
-                                                     rhs,
-                                                     &local_matrix,
-                                                     constant_modes);
+        TimerOutput::Scope scope(context.timer, "solve");
+        context.summary.solver =
+          context.linear_solver.solve(constrained_operator,
+                                      solution,
+                                      rhs,
+                                      &local_matrix,
+                                      constant_modes);
       }
       solution += prescribed;
-      TrilinosWrappers::MPI::Vector owned_solution(owned, ctx.communicator);
+      TrilinosWrappers::MPI::Vector owned_solution(owned, context.communicator);
       for (const auto dof : owned)
         owned_solution[dof] = solution[dof];
       owned_solution.compress(VectorOperation::insert);
-      displacement.reinit(owned, ctx.nodes.relevant_dofs(), ctx.communicator);
+      displacement.reinit(owned,
+                          context.nodes.relevant_dofs(),
+                          context.communicator);
       displacement = owned_solution;
-      Problems::internal::print_solve(simulator, "");
-      check_equilibrium(simulator, displacement);
+      print_solve(context, "");
+      check_equilibrium(context, displacement);
     }
 
 
     template <int dim>
     void
     NodalSystem<dim>::solve_assembled(
-      Problems::Simulator<dim>      &simulator,
+      const SystemContext<dim>      &context,
       TrilinosWrappers::MPI::Vector &displacement)
     {
-      const auto ctx           = Problems::internal::context_of(simulator);
-      ctx.summary.n_unknowns   = ctx.dof_handler.n_dofs();
-      const IndexSet &owned    = ctx.dof_handler.locally_owned_dofs();
-      const IndexSet  relevant = ctx.nodes.relevant_dofs();
+      context.summary.n_unknowns = context.dof_handler.n_dofs();
+      const IndexSet &owned      = context.dof_handler.locally_owned_dofs();
+      const IndexSet  relevant   = context.nodes.relevant_dofs();
       {
-        TimerOutput::Scope scope(ctx.timer, "assembly");
-        make_constraints_and_load(simulator);
+        TimerOutput::Scope scope(context.timer, "assembly");
+        make_constraints_and_load(context);
         system_rhs = load;
         bond_operator.assemble(system_matrix, &constraints, &system_rhs);
       }
-      ctx.summary.n_constrained_nodes = Utilities::MPI::sum(
-        ctx.boundary_conditions.n_constrained_nodes(ctx.nodes, constraints),
-        ctx.communicator);
-      ctx.summary.n_nonzeros = system_matrix.n_nonzero_elements();
-      ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                << simulator.elapsed()
-                << " s] assembled: " << ctx.dof_handler.n_dofs() << " DoFs, "
-                << ctx.summary.n_nonzeros << " nonzeros, "
-                << ctx.summary.n_constrained_nodes
-                << " nodes in Dirichlet layers" << std::endl;
+      context.summary.n_constrained_nodes = Utilities::MPI::sum(
+        context.boundary_conditions.n_constrained_nodes(context.nodes,
+                                                        constraints),
+        context.communicator);
+      context.summary.n_nonzeros = system_matrix.n_nonzero_elements();
+      context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+                    << context.elapsed()
+                    << " s] assembled: " << context.dof_handler.n_dofs()
+                    << " DoFs, " << context.summary.n_nonzeros << " nonzeros, "
+                    << context.summary.n_constrained_nodes
+                    << " nodes in Dirichlet layers" << std::endl;
 
       // Symmetry of the system, measured: x^T A y against y^T A x.
-      TrilinosWrappers::MPI::Vector x(owned, ctx.communicator),
-        y(owned, ctx.communicator), ax(owned, ctx.communicator),
-        ay(owned, ctx.communicator);
+      TrilinosWrappers::MPI::Vector x(owned, context.communicator),
+        y(owned, context.communicator), ax(owned, context.communicator),
+        ay(owned, context.communicator);
       for (const auto dof : owned)
         {
           x[dof] = std::sin(1.3 * dof + 0.2);
@@ -225,40 +230,39 @@ namespace PeriDEAL
       const double asymmetry = std::abs(y * ax - x * ay);
       const bool   symmetric = asymmetry <= 1e-12 * ax.l2_norm() * y.l2_norm();
 
-      TrilinosWrappers::MPI::Vector solution(owned, ctx.communicator);
+      TrilinosWrappers::MPI::Vector solution(owned, context.communicator);
       {
-        TimerOutput::Scope             scope(ctx.timer, "solve");
+        TimerOutput::Scope             scope(context.timer, "solve");
         std::vector<std::vector<bool>> constant_modes;
-        DoFTools::extract_constant_modes(ctx.dof_handler,
+        DoFTools::extract_constant_modes(context.dof_handler,
                                          ComponentMask(dim, true),
                                          constant_modes);
-        ctx.summary.solver = ctx.linear_solver.solve(system_matrix,
-                                                     solution,
-                                                     system_rhs,
-                                                     constant_modes,
-                                                     symmetric);
+        context.summary.solver = context.linear_solver.solve(system_matrix,
+                                                             solution,
+                                                             system_rhs,
+                                                             constant_modes,
+                                                             symmetric);
         constraints.distribute(solution);
       }
-      displacement.reinit(owned, relevant, ctx.communicator);
+      displacement.reinit(owned, relevant, context.communicator);
       displacement = solution;
-      Problems::internal::print_solve(simulator,
-                                      symmetric ? "" : " (non-symmetric)");
-      check_equilibrium(simulator, displacement);
+      print_solve(context, symmetric ? "" : " (non-symmetric)");
+      check_equilibrium(context, displacement);
     }
 
 
     template <int dim>
     void
     NodalSystem<dim>::check_rigid_motions(
-      const Problems::Simulator<dim> &simulator) const
+      const SystemContext<dim> &context) const
     {
       // The rigid motions (translations, rotations about the body's centre
       // in units of its size) restricted to the prescribed DoFs: the Gram
       // matrix M^T M adds up over processes, and a (near) null vector is a
       // rigid motion that no Dirichlet condition holds. A direct solver
       // would return one of infinitely many solutions without complaint.
-      const auto        &nodes   = simulator.get_nodes();
-      const MPI_Comm     comm    = simulator.get_communicator();
+      const auto        &nodes   = context.nodes;
+      const MPI_Comm     comm    = context.communicator;
       constexpr unsigned n_modes = dim * (dim + 1) / 2;
       Point<dim>         lower, upper;
       for (unsigned int d = 0; d < dim; ++d)
@@ -338,7 +342,7 @@ namespace PeriDEAL
         free_modes.empty(),
         ExcInvalidInput(
           "Boundary conditions/Dirichlet boundary ids",
-          simulator.get_boundary_conditions().dirichlet_ids_string(),
+          context.boundary_conditions.dirichlet_ids_string(),
           "the Dirichlet layers leave a rigid motion free (" + free_modes +
             "), so the system is singular; prescribe the missing "
             "components ('Dirichlet components') or more boundaries"));
@@ -348,13 +352,12 @@ namespace PeriDEAL
     template <int dim>
     void
     NodalSystem<dim>::check_equilibrium(
-      Problems::Simulator<dim>            &simulator,
+      const SystemContext<dim>            &context,
       const TrilinosWrappers::MPI::Vector &displacement) const
     {
       // F_int(u) + F_ext = 0 at every free DoF, with the forces of
       // BondOperator::apply() (not of its assembly).
-      const auto      ctx   = Problems::internal::context_of(simulator);
-      const IndexSet &owned = ctx.dof_handler.locally_owned_dofs();
+      const IndexSet &owned = context.dof_handler.locally_owned_dofs();
       VectorType      u, internal;
       bond_operator.initialize_dof_vector(u);
       bond_operator.initialize_dof_vector(internal);
@@ -367,10 +370,11 @@ namespace PeriDEAL
         if (!constraints.is_constrained(dof))
           free_residual2 += std::pow(internal[dof] + load[dof], 2);
       const double scale = internal.l2_norm();
-      free_residual2 = Utilities::MPI::sum(free_residual2, ctx.communicator);
-      ctx.summary.equilibrium_residual =
+      free_residual2 =
+        Utilities::MPI::sum(free_residual2, context.communicator);
+      context.summary.equilibrium_residual =
         scale > 0 ? std::sqrt(free_residual2) / scale : 0.;
-      Problems::internal::print_equilibrium(simulator, "matrix-free forces");
+      print_equilibrium(context, "matrix-free forces");
     }
 
 

@@ -9,7 +9,6 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/quasi_static.h>
-#include <perideal/problems/simulator_context.h>
 
 #include <cmath>
 #include <filesystem>
@@ -23,9 +22,6 @@ namespace PeriDEAL
 {
   namespace Problems
   {
-    using internal::context_of;
-
-
     template <int dim>
     void
     QuasiStatic<dim>::declare_parameters(ParameterHandler &prm)
@@ -69,8 +65,9 @@ namespace PeriDEAL
                         "analytical solution: set 'Analytical solution/Compare "
                         "with analytical solution = true', or leave the entry "
                         "empty"));
-      simulator.get_boundary_treatment().make_system(simulator)->check_input(
-        simulator);
+      simulator.get_boundary_treatment()
+        .template make_system<dim>(simulator.get_boundary_treatment_name())
+        ->check_input(simulator.get_linear_solver());
     }
 
 
@@ -111,9 +108,11 @@ namespace PeriDEAL
               "; they depend on t" :
               "; they do not depend on t")
         << std::endl;
-      system = simulator.get_boundary_treatment().make_system(simulator);
-      system->setup(simulator);
-      system->solve_linear(simulator, displacement);
+      const Boundary::SystemContext<dim> context = simulator.system_context();
+      system = simulator.get_boundary_treatment().template make_system<dim>(
+        simulator.get_boundary_treatment_name());
+      system->setup(context);
+      system->solve_linear(context, displacement);
       postprocess(simulator);
     }
 
@@ -122,7 +121,8 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::postprocess(Simulator<dim> &simulator)
     {
-      const auto                 ctx     = context_of(simulator);
+      const auto  ctx                    = simulator.system_context();
+      const auto *analytical_solution    = simulator.get_analytical_solution();
       const unsigned int         n_owned = ctx.nodes.n_owned();
       std::vector<IO::NodeField> fields  = {{"node_volume", {}},
                                             {"mpi_rank", {}},
@@ -134,12 +134,12 @@ namespace PeriDEAL
           fields[1].values.push_back(rank);
           fields[2].values.push_back(system->is_constrained(ctx.nodes[i]));
         }
-      const auto operator_fields = system->node_fields(simulator, displacement);
+      const auto operator_fields = system->node_fields(ctx, displacement);
       fields.insert(fields.begin(),
                     operator_fields.begin(),
                     operator_fields.end());
 
-      if (ctx.analytical_solution != nullptr)
+      if (analytical_solution != nullptr)
         {
           IO::NodeField  error{"displacement_error", {}};
           IO::NodeField  normalized{"normalized_error", {}};
@@ -149,8 +149,7 @@ namespace PeriDEAL
           Tensor<1, dim> component_max;
           for (unsigned int i = 0; i < n_owned; ++i)
             {
-              ctx.analytical_solution->vector_value(ctx.nodes[i].location,
-                                                    exact);
+              analytical_solution->vector_value(ctx.nodes[i].location, exact);
               for (unsigned int c = 0; c < dim; ++c)
                 component_max[c] =
                   std::max(component_max[c], std::abs(exact[c]));
@@ -161,8 +160,7 @@ namespace PeriDEAL
           double normalized_max = 0;
           for (unsigned int i = 0; i < n_owned; ++i)
             {
-              ctx.analytical_solution->vector_value(ctx.nodes[i].location,
-                                                    exact);
+              analytical_solution->vector_value(ctx.nodes[i].location, exact);
               double e = 0, u = 0, n2 = 0;
               for (unsigned int c = 0; c < dim; ++c)
                 {
@@ -183,7 +181,7 @@ namespace PeriDEAL
             }
           ctx.summary.errors.max_normalized =
             Utilities::MPI::max(normalized_max, ctx.communicator);
-          if (!ctx.node_data_file.empty())
+          if (!simulator.get_node_data_file().empty())
             write_node_data(simulator, component_max);
           fields.push_back(normalized);
           // Nodes of the system besides the body's (surface nodes): the
@@ -194,7 +192,7 @@ namespace PeriDEAL
               double surface_max = 0;
               for (const auto &node : extra)
                 {
-                  ctx.analytical_solution->vector_value(node.location, exact);
+                  analytical_solution->vector_value(node.location, exact);
                   double n2 = 0;
                   for (unsigned int c = 0; c < dim; ++c)
                     if (component_max[c] > 0)
@@ -225,14 +223,14 @@ namespace PeriDEAL
                     << std::endl;
         }
 
+      const auto        &output = simulator.get_output();
       TimerOutput::Scope scope(ctx.timer, "output");
       const std::string  record =
-        ctx.output.write(ctx.dof_handler, ctx.nodes, displacement, fields);
+        output.write(ctx.dof_handler, ctx.nodes, displacement, fields);
       if (!record.empty())
         ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                  << simulator.elapsed() << " s] wrote "
-                  << ctx.output.directory() << "/" << record
-                  << std::defaultfloat << std::endl;
+                  << simulator.elapsed() << " s] wrote " << output.directory()
+                  << "/" << record << std::defaultfloat << std::endl;
     }
 
 
@@ -241,13 +239,15 @@ namespace PeriDEAL
     QuasiStatic<dim>::write_node_data(Simulator<dim>       &simulator,
                                       const Tensor<1, dim> &component_max) const
     {
-      const auto ctx = context_of(simulator);
+      const auto  ctx                   = simulator.system_context();
+      const auto *analytical_solution   = simulator.get_analytical_solution();
+      const std::string &node_data_file = simulator.get_node_data_file();
       // Rows: kind (0 body, 1 surface), x, u, exact, normalized error.
       std::vector<double> rows;
       Vector<double>      exact(dim);
       const auto          add =
         [&](const int kind, const Point<dim> &x, const Tensor<1, dim> &u) {
-          ctx.analytical_solution->vector_value(x, exact);
+          analytical_solution->vector_value(x, exact);
           rows.push_back(kind);
           double n2 = 0;
           for (unsigned int c = 0; c < dim; ++c)
@@ -276,7 +276,7 @@ namespace PeriDEAL
       // so that a failure there does not leave the others waiting.
       std::string error;
       if (Utilities::MPI::this_mpi_process(ctx.communicator) == 0)
-        error = write_then_rename(ctx.node_data_file, [&](std::ostream &out) {
+        error = write_then_rename(node_data_file, [&](std::ostream &out) {
           const char *const names[] = {"x", "y", "z"};
           out << "kind";
           for (unsigned int c = 0; c < dim; ++c)
@@ -298,7 +298,7 @@ namespace PeriDEAL
         });
       throw_on_any_rank(error.empty() ?
                           error :
-                          "Invalid value '" + ctx.node_data_file +
+                          "Invalid value '" + node_data_file +
                             "' for the parameter 'Output/Node data file': " +
                             error + ".",
                         ctx.communicator);

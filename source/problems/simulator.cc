@@ -403,6 +403,33 @@ namespace PeriDEAL
 
 
     template <int dim>
+    Boundary::SystemContext<dim>
+    Simulator<dim>::system_context()
+    {
+      return {communicator,
+              pcout,
+              timer,
+              summary,
+              dof_handler,
+              *triangulation,
+              nodes,
+              neighbor_lists,
+              get_model(),
+              *algorithm,
+              algorithm_name,
+              horizon,
+              boundary_conditions,
+              treatment_name,
+              linear_solver,
+              [this](const bool store_full_lists) {
+                setup_neighbor_lists(store_full_lists);
+              },
+              [this]() { return elapsed(); },
+              [this](const std::string &text) { print_progress(text); }};
+    }
+
+
+    template <int dim>
     bool
     Simulator<dim>::couples_two_horizons() const
     {

@@ -10,12 +10,6 @@
 
 namespace PeriDEAL
 {
-  namespace Problems
-  {
-    template <int dim>
-    class Simulator;
-  }
-
   namespace Boundary
   {
     using namespace dealii;
@@ -67,13 +61,30 @@ namespace PeriDEAL
       virtual unsigned int
       taylor_order() const = 0;
 
-      /// The discrete system of a 2D body with this treatment.
+      /**
+       * A new discrete system of a 2D body with this treatment, not yet set
+       * up: the problem type then drives it with the run's SystemContext
+       * (DiscreteSystem::setup(), solve_linear()). @p treatment_name is the
+       * treatment's name in the input file, for messages.
+       */
       virtual std::unique_ptr<DiscreteSystem<2>>
-      make_system(const Problems::Simulator<2> &simulator) const = 0;
+      make_system_2d(const std::string &treatment_name) const = 0;
 
-      /// The discrete system of a 3D body with this treatment.
+      /// The same for a 3D body.
       virtual std::unique_ptr<DiscreteSystem<3>>
-      make_system(const Problems::Simulator<3> &simulator) const = 0;
+      make_system_3d(const std::string &treatment_name) const = 0;
+
+      /// make_system_2d() or make_system_3d(), for templates over @p dim.
+      template <int dim>
+      std::unique_ptr<DiscreteSystem<dim>>
+      make_system(const std::string &treatment_name) const
+      {
+        static_assert(dim == 2 || dim == 3, "2D and 3D only");
+        if constexpr (dim == 2)
+          return make_system_2d(treatment_name);
+        else
+          return make_system_3d(treatment_name);
+      }
 
       /// The family's name in error messages.
       static std::string

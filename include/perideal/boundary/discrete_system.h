@@ -6,20 +6,16 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <perideal/boundary/system_context.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/solution_output.h>
+#include <perideal/solvers/linear_solver.h>
 
 #include <string>
 #include <vector>
 
 namespace PeriDEAL
 {
-  namespace Problems
-  {
-    template <int dim>
-    class Simulator;
-  }
-
   namespace Boundary
   {
     using namespace dealii;
@@ -34,6 +30,9 @@ namespace PeriDEAL
      * or assembled); `fictitious layer` and `surface nodes` build a
      * LayerSystem (FictitiousLayerOperator). A new treatment registers a
      * BoundaryTreatment whose make_system() returns its own class.
+     *
+     * The system sees the run through a SystemContext (filled by the
+     * problem type from its simulator), never through the simulator.
      */
     template <int dim>
     class DiscreteSystem
@@ -42,31 +41,31 @@ namespace PeriDEAL
       virtual ~DiscreteSystem() = default;
 
       /**
-       * Refuse settings the system cannot honour (naming the entries),
-       * before anything is built. Collective.
+       * Refuse settings of @p linear_solver that the system cannot honour
+       * (naming the entries), before anything is built. Collective.
        */
       virtual void
-      check_input(const Problems::Simulator<dim> &simulator) const;
+      check_input(const Solvers::LinearSolver &linear_solver) const;
 
       /// Build neighbour lists, operators, layers (timer "operator setup").
       virtual void
-      setup(Problems::Simulator<dim> &simulator) = 0;
+      setup(const SystemContext<dim> &context) = 0;
 
       /**
        * Solve the linear quasi-static problem \f$K u = f\f$ with the
-       * simulator's boundary conditions and linear solver; check
+       * context's boundary conditions and linear solver; check
        * equilibrium; fill the run summary. @p displacement receives the
        * body nodes' displacements in the DoFHandler numbering, with ghost
        * values of every node of the node set.
        */
       virtual void
-      solve_linear(Problems::Simulator<dim>      &simulator,
+      solve_linear(const SystemContext<dim>      &context,
                    TrilinosWrappers::MPI::Vector &displacement) = 0;
 
       /// Per-node fields of the operator for the owned nodes (dilatation,
       /// weighted volume, ...), for output.
       virtual std::vector<IO::NodeField>
-      node_fields(const Problems::Simulator<dim>      &simulator,
+      node_fields(const SystemContext<dim>            &context,
                   const TrilinosWrappers::MPI::Vector &displacement) const;
 
       /// Whether owned node @p i has a prescribed component.

@@ -35,13 +35,13 @@ namespace PeriDEAL
                   const unsigned int taylor_order);
 
       void
-      check_input(const Problems::Simulator<dim> &simulator) const override;
+      check_input(const Solvers::LinearSolver &linear_solver) const override;
 
       void
-      setup(Problems::Simulator<dim> &simulator) override;
+      setup(const SystemContext<dim> &context) override;
 
       void
-      solve_linear(Problems::Simulator<dim>      &simulator,
+      solve_linear(const SystemContext<dim>      &context,
                    TrilinosWrappers::MPI::Vector &displacement) override;
 
       bool
@@ -58,7 +58,7 @@ namespace PeriDEAL
       /// prescribed unknowns eliminated (no product matrix).
       void
       solve_matrix_free(
-        Problems::Simulator<dim>                        &simulator,
+        const SystemContext<dim>                        &context,
         const std::map<types::global_dof_index, double> &prescribed,
         TrilinosWrappers::MPI::Vector                   &solution);
 

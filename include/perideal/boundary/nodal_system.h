@@ -34,15 +34,15 @@ namespace PeriDEAL
     {
     public:
       void
-      setup(Problems::Simulator<dim> &simulator) override;
+      setup(const SystemContext<dim> &context) override;
 
       void
-      solve_linear(Problems::Simulator<dim>      &simulator,
+      solve_linear(const SystemContext<dim>      &context,
                    TrilinosWrappers::MPI::Vector &displacement) override;
 
       std::vector<IO::NodeField>
       node_fields(
-        const Problems::Simulator<dim>      &simulator,
+        const SystemContext<dim>            &context,
         const TrilinosWrappers::MPI::Vector &displacement) const override;
 
       bool
@@ -54,26 +54,26 @@ namespace PeriDEAL
       /// The Dirichlet constraints (with the rigid-motion check) and the
       /// load vector.
       void
-      make_constraints_and_load(Problems::Simulator<dim> &simulator);
+      make_constraints_and_load(const SystemContext<dim> &context);
 
       /// Stop with the free rigid motions named when the Dirichlet
       /// conditions do not fix all of them (the system would be singular).
       void
-      check_rigid_motions(const Problems::Simulator<dim> &simulator) const;
+      check_rigid_motions(const SystemContext<dim> &context) const;
 
       void
-      solve_matrix_free(Problems::Simulator<dim>      &simulator,
+      solve_matrix_free(const SystemContext<dim>      &context,
                         TrilinosWrappers::MPI::Vector &displacement);
 
       void
-      solve_assembled(Problems::Simulator<dim>      &simulator,
+      solve_assembled(const SystemContext<dim>      &context,
                       TrilinosWrappers::MPI::Vector &displacement);
 
       /// Equilibrium with BondOperator::apply() at the free DoFs, into
       /// the run summary and the log.
       void
       check_equilibrium(
-        Problems::Simulator<dim>            &simulator,
+        const SystemContext<dim>            &context,
         const TrilinosWrappers::MPI::Vector &displacement) const;
 
       Discretization::BondState<dim>      bond_state;

@@ -14,6 +14,7 @@
 
 #include <perideal/boundary/boundary_conditions.h>
 #include <perideal/boundary/boundary_treatment.h>
+#include <perideal/boundary/system_context.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/run_summary.h>
@@ -188,6 +189,18 @@ namespace PeriDEAL
 
       IO::RunSummary &
       get_summary();
+
+      /**
+       * The run as a Boundary::DiscreteSystem sees it: references to the
+       * shared set-up, the log, the timer and the summary, and hooks to
+       * setup_neighbor_lists(), elapsed() and print_progress(). The
+       * references stay valid as long as the simulator; the neighbour lists
+       * are those that the hook builds. Needs a material model (as
+       * get_model()).
+       */
+      Boundary::SystemContext<dim>
+      system_context();
+
       /// @}
 
     private:
