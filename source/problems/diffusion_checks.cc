@@ -40,12 +40,11 @@ namespace PeriDEAL
       unsigned int                  node  = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
-          const unsigned int k = op.vector_index(i);
-          const bool         bad =
-            is_prescribed[k] ?
-                      !std::isfinite(x.local_element(k)) :
-                      !std::isfinite(lifted.local_element(k)) ||
-                  !std::isfinite(x.local_element(k));
+          const unsigned int k         = op.vector_index(i);
+          const bool         bad       = is_prescribed[k] ?
+                                           !std::isfinite(x.local_element(k)) :
+                                           !std::isfinite(lifted.local_element(k)) ||
+                               !std::isfinite(x.local_element(k));
           const unsigned int this_kind = is_prescribed[k] ? 0 : 1;
           const auto         dof       = (*nodes)[i].dofs[0];
           if (bad && (this_kind < kind || (this_kind == kind && dof < first)))
@@ -58,8 +57,8 @@ namespace PeriDEAL
       const unsigned int worst = Utilities::MPI::min(kind, comm);
       if (worst == 2)
         return;
-      const auto chosen = Utilities::MPI::min(kind == worst ? first : none,
-                                              comm);
+      const auto chosen =
+        Utilities::MPI::min(kind == worst ? first : none, comm);
       std::string message;
       if (kind == worst && first == chosen)
         {
@@ -76,8 +75,9 @@ namespace PeriDEAL
                    "/Function expression': it is " +
                    (std::isnan(value) ? std::string("NaN") :
                                         format_number(value)) +
-                   " at the node at " + at.str() + " at t = " +
-                   format_number(t) + ", " + role + " of " + solve_label() +
+                   " at the node at " + at.str() +
+                   " at t = " + format_number(t) + ", " + role + " of " +
+                   solve_label() +
                    "; give a function that is finite at every node and "
                    "time.";
           };
@@ -129,8 +129,7 @@ namespace PeriDEAL
               if (message.empty())
                 {
                   std::ostringstream text;
-                  text << "The right-hand side of " << solve_label()
-                       << " is "
+                  text << "The right-hand side of " << solve_label() << " is "
                        << (std::isfinite(b.local_element(k)) ?
                              lifted.local_element(k) :
                              b.local_element(k))
@@ -140,8 +139,8 @@ namespace PeriDEAL
                           "the values overflow the range of double "
                           "precision numbers (about 1e308). Check the "
                           "magnitudes of 'diffusion/Diffusivity' ("
-                       << kernel.diffusivity()
-                       << "), 'diffusion/Time step' (" << dt
+                       << kernel.diffusivity() << "), 'diffusion/Time step' ("
+                       << dt
                        << ") and the data. The output written before is "
                           "complete.";
                   message = text.str();
@@ -174,9 +173,9 @@ namespace PeriDEAL
         return;
       // One process reports: the owner of the node, or rank 0 when no
       // node is reported.
-      const bool reporter = chosen != numbers::invalid_dof_index ?
-                              first == chosen :
-                              Utilities::MPI::this_mpi_process(comm) == 0;
+      const bool         reporter = chosen != numbers::invalid_dof_index ?
+                                      first == chosen :
+                                      Utilities::MPI::this_mpi_process(comm) == 0;
       std::ostringstream text;
       if (reporter)
         {
