@@ -181,32 +181,58 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::string
+    Diffusion<dim>::stepping_name(const Stepping value)
+    {
+      switch (value)
+        {
+          case Stepping::explicit_euler:
+            return "explicit";
+          case Stepping::implicit:
+            return "implicit";
+          case Stepping::steady_state:
+            return "steady state";
+        }
+      Assert(false, ExcInternalError());
+      return "";
+    }
+
+
+    template <int dim>
     void
     Diffusion<dim>::parse_parameters(ParameterHandler &prm)
     {
       kernel.parse_parameters(prm, section);
-      stepping   = prm.get("Time stepping");
+      const std::string stepping_text = prm.get("Time stepping");
+      for (const auto value : {Stepping::explicit_euler,
+                               Stepping::implicit,
+                               Stepping::steady_state})
+        if (stepping_name(value) == stepping_text)
+          stepping = value;
+      Assert(stepping_name(stepping) == stepping_text,
+             ExcInternalError()); // the pattern admits these three only
       model_name = prm.get("Model");
       model      = Models::DiffusionModelRegistry<dim>::create(model_name, prm);
-      AssertThrow(stepping == "explicit" || model->supports_implicit(),
+      AssertThrow(stepping == Stepping::explicit_euler ||
+                    model->supports_implicit(),
                   ExcInvalidInput(section + "/Time stepping",
-                                  stepping,
+                                  stepping_text,
                                   "the model '" + model_name +
                                     "' runs with explicit time stepping "
                                     "only"));
       model_columns = model->history_columns();
       theta         = prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5;
       end_time      = prm.get_double("End time");
-      AssertThrow(end_time > 0 || stepping == "steady state",
+      AssertThrow(end_time > 0 || stepping == Stepping::steady_state,
                   ExcInvalidInput(section + "/End time",
                                   prm.get("End time"),
                                   "give a simulated time > 0"));
       given_time_step = prm.get_double("Time step");
       AssertThrow(given_time_step >= 0 &&
-                    (given_time_step > 0 || stepping != "implicit"),
+                    (given_time_step > 0 || stepping != Stepping::implicit),
                   ExcInvalidInput(section + "/Time step",
                                   prm.get("Time step"),
-                                  stepping == "implicit" ?
+                                  stepping == Stepping::implicit ?
                                     "implicit time stepping needs a time "
                                     "step > 0" :
                                     "give a step > 0, or 0 for the "
@@ -265,7 +291,7 @@ namespace PeriDEAL
                                     "give a thickness > 0 (in horizons)"));
         if (values != "mirror")
           return;
-        AssertThrow(stepping == "explicit",
+        AssertThrow(stepping == Stepping::explicit_euler,
                     ExcInvalidInput(section + "/" + kind + " layer values",
                                     values,
                                     "mirror layers need 'Time stepping = "
@@ -297,7 +323,7 @@ namespace PeriDEAL
                                     "boundary id " + std::to_string(id) +
                                       " is also in 'Dirichlet boundary ids'; a "
                                       "face carries either a value or a flux"));
-      AssertThrow(stepping != "steady state" || !dirichlet_ids.empty(),
+      AssertThrow(stepping != Stepping::steady_state || !dirichlet_ids.empty(),
                   ExcInvalidInput(section + "/Dirichlet boundary ids",
                                   dirichlet_ids_text,
                                   "a steady state needs prescribed values "
@@ -351,16 +377,16 @@ namespace PeriDEAL
         for (const auto &entry : entries)
           unused.push_back({prefix + entry, why});
       };
-      if (stepping != "implicit")
+      if (stepping != Stepping::implicit)
         add({"Implicit scheme"},
-            "'Time stepping = " + stepping +
+            "'Time stepping = " + stepping_name(stepping) +
               "' uses no implicit scheme; set 'Time stepping = implicit' to "
               "use it, or remove the entry");
-      if (stepping == "explicit")
+      if (stepping == Stepping::explicit_euler)
         add({"Preconditioner", "Solver tolerance", "Maximum iterations"},
             "'Time stepping = explicit' solves no linear system; remove the "
             "entry, or choose 'implicit' or 'steady state'");
-      if (stepping == "steady state")
+      if (stepping == Stepping::steady_state)
         add({"Time step",
              "End time",
              "Output every steps",
@@ -369,18 +395,18 @@ namespace PeriDEAL
             "'Time stepping = steady state' takes no time steps (one solve, "
             "one output, sources and boundary values at t = 0); remove the "
             "entry, or choose 'explicit' or 'implicit'");
-      if (stepping != "explicit" || given_time_step > 0)
+      if (stepping != Stepping::explicit_euler || given_time_step > 0)
         add({"Safety factor"},
-            stepping != "explicit" ?
-              "the time step of 'Time stepping = " + stepping +
+            stepping != Stepping::explicit_euler ?
+              "the time step of 'Time stepping = " + stepping_name(stepping) +
                 "' is 'Time step' itself; remove the entry" :
               std::string("'Time step' is given, so no fraction of the "
                           "stability bound is taken; set 'Time step = 0' to "
                           "use it, or remove the entry"));
-      if (stepping != "explicit" || given_time_step == 0)
+      if (stepping != Stepping::explicit_euler || given_time_step == 0)
         add({"Allow unstable time step"},
-            stepping != "explicit" ?
-              "'Time stepping = " + stepping +
+            stepping != Stepping::explicit_euler ?
+              "'Time stepping = " + stepping_name(stepping) +
                 "' has no stability bound to exceed; remove the entry" :
               std::string("with 'Time step = 0' the step is 'Safety "
                           "factor' (at most 1) times the stability bound, "
@@ -436,7 +462,7 @@ namespace PeriDEAL
         apply_layer_values(0, c);
         finite_check.throw_pending(simulator.get_communicator());
       }
-      if (stepping == "steady state")
+      if (stepping == Stepping::steady_state)
         {
           TimerOutput::Scope scope(simulator.get_timer(), "steady solve");
           evaluate_source(0, rhs);
@@ -451,7 +477,7 @@ namespace PeriDEAL
           return;
         }
       choose_time_step(simulator);
-      if (stepping == "implicit" && local_laplacian)
+      if (stepping == Stepping::implicit && local_laplacian)
         setup_local_laplacian(simulator, 1, theta * dt);
       record_history(simulator);
       write_output(simulator);
@@ -460,7 +486,7 @@ namespace PeriDEAL
       last_progress = loop_start;
       while (step_number < n_steps)
         {
-          if (stepping == "explicit")
+          if (stepping == Stepping::explicit_euler)
             explicit_step(simulator);
           else
             implicit_step(simulator);
@@ -491,7 +517,7 @@ namespace PeriDEAL
               write_output(simulator);
             }
         }
-      if (stepping == "implicit")
+      if (stepping == Stepping::implicit)
         simulator.get_pcout()
           << "           " << total_iterations << " solver iterations in "
           << n_steps << " steps (" << std::fixed << std::setprecision(1)
@@ -560,8 +586,9 @@ namespace PeriDEAL
                                              " (continuum)")
         << ", " << Utilities::MPI::sum(dirichlet_nodes.size(), comm)
         << " Dirichlet nodes, " << Utilities::MPI::sum(flux_nodes.size(), comm)
-        << " flux nodes, " << stepping << ", " << MultithreadInfo::n_threads()
-        << " thread(s) per process" << std::endl;
+        << " flux nodes, " << stepping_name(stepping) << ", "
+        << MultithreadInfo::n_threads() << " thread(s) per process"
+        << std::endl;
     }
 
 
@@ -597,7 +624,7 @@ namespace PeriDEAL
             << "           the model '" << model_name
             << "' limits the time step to " << model_bound << std::endl;
         }
-      if (stepping == "explicit" && given_time_step > 0)
+      if (stepping == Stepping::explicit_euler && given_time_step > 0)
         AssertThrow(given_time_step <= dt_bound || allow_unstable,
                     ExcInvalidInput(
                       section + "/Time step",
@@ -613,7 +640,7 @@ namespace PeriDEAL
                         "time step = true'"));
       // Implicit schemes are stable at any step: no bound (only the count).
       StabilityBound step_bound;
-      if (stepping == "explicit")
+      if (stepping == Stepping::explicit_euler)
         {
           step_bound.value = dt_bound;
           step_bound.description =
@@ -964,14 +991,14 @@ namespace PeriDEAL
       auto       &out  = simulator.get_pcout();
       out << "[" << std::setw(8) << std::fixed << std::setprecision(2) << now
           << " s] ";
-      if (stepping == "steady state")
+      if (stepping == Stepping::steady_state)
         out << "steady state";
       else
         out << "step " << step_number << "/" << n_steps
             << ", t = " << std::scientific << std::setprecision(4) << time;
       out << std::scientific << std::setprecision(4) << ", total " << row[2]
           << ", min " << row[3] << ", max " << row[4];
-      if (stepping != "explicit")
+      if (stepping != Stepping::explicit_euler)
         out << ", " << last_iterations << " iterations";
       if (compare)
         out << ", relative l2 error " << row[6] << ", max error " << row[7];
@@ -980,7 +1007,7 @@ namespace PeriDEAL
             << model->progress_text(
                  std::vector<double>(row.end() - model_columns.size(),
                                      row.end()));
-      if (stepping != "steady state")
+      if (stepping != Stepping::steady_state)
         {
           const double rate = step_number / std::max(now - loop_start, 1e-9);
           out << ", " << std::fixed << std::setprecision(1) << rate
@@ -1068,7 +1095,7 @@ namespace PeriDEAL
       // The sources and boundary values were finite where they were
       // evaluated (else their entry would be named): the solution diverged.
       std::ostringstream advice;
-      if (stepping == "explicit")
+      if (stepping == Stepping::explicit_euler)
         advice << "The run is unstable: reduce 'diffusion/Time step' "
                   "(forward Euler bound "
                << dt_bound << ") or check the constants.";

@@ -16,7 +16,7 @@ namespace PeriDEAL
     std::string
     Diffusion<dim>::solve_label() const
     {
-      if (stepping == "steady state")
+      if (stepping == Stepping::steady_state)
         return "the steady-state solve";
       return "the linear solve of step " + std::to_string(step_number) +
              " (t = " + format_number(time) + ")";
@@ -83,10 +83,10 @@ namespace PeriDEAL
           };
           // The times at which the right-hand side evaluates the data.
           std::vector<double> times = {time};
-          if (stepping == "implicit" && theta < 1)
+          if (stepping == Stepping::implicit && theta < 1)
             times.push_back((step_number - 1) * dt);
           const bool first_solve =
-            stepping == "steady state" || step_number <= 1;
+            stepping == Stepping::steady_state || step_number <= 1;
           if (is_prescribed[k])
             message = named("Boundary concentration",
                             x.local_element(k),
@@ -123,7 +123,7 @@ namespace PeriDEAL
                 message = named("Initial concentration",
                                 x.local_element(k),
                                 0,
-                                stepping == "steady state" ?
+                                stepping == Stepping::steady_state ?
                                   "the initial guess" :
                                   "the initial state in the right-hand side");
               if (message.empty())
@@ -194,7 +194,7 @@ namespace PeriDEAL
                   "numbers (about 1e308). Check the magnitudes of "
                   "'diffusion/Diffusivity' ("
                << kernel.diffusivity() << ")"
-               << (stepping == "implicit" ?
+               << (stepping == Stepping::implicit ?
                      ", 'diffusion/Time step' (" + format_number(dt) + ")" :
                      std::string())
                << " and the data. The output written before is complete.";

@@ -125,6 +125,19 @@ namespace PeriDEAL
 
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
+      /// 'Time stepping', parsed once in parse_parameters().
+      enum class Stepping
+      {
+        explicit_euler,
+        implicit,
+        steady_state
+      };
+
+      /// The input text of @p value ('explicit', 'implicit', 'steady
+      /// state'), for messages.
+      static std::string
+      stepping_name(const Stepping value);
+
       void
       setup(Simulator<dim> &simulator);
 
@@ -231,8 +244,8 @@ namespace PeriDEAL
       std::string                                  layer_values = "function";
       std::string                                  flux_values  = "source";
       std::unique_ptr<Models::DiffusionModel<dim>> model;
-      std::string                                  stepping = "explicit";
-      double                                       theta    = 1;
+      Stepping                        stepping = Stepping::explicit_euler;
+      double                          theta    = 1;
       double                          end_time = 1, given_time_step = 0;
       double                          safety_factor   = 0.9;
       bool                            allow_unstable  = false;
