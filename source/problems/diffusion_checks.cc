@@ -1,3 +1,12 @@
+/**
+ * @file
+ * The checks of the diffusion problem type's state and linear solves: a
+ * concentration that is not finite after a step (check_finite()), the
+ * right-hand side and initial guess of a solve traced back to the entry
+ * that made them not finite (check_solve_input()), and a solve that
+ * overflowed (check_solve_result()).
+ */
+
 #include <deal.II/base/mpi.h>
 
 #include <perideal/base/collective_checks.h>
@@ -203,41 +212,47 @@ namespace PeriDEAL
     }
 
 
-    template std::string
-    Diffusion<1>::solve_label() const;
-    template std::string
-    Diffusion<2>::solve_label() const;
-    template std::string
-    Diffusion<3>::solve_label() const;
-    template void
-    Diffusion<1>::check_solve_input(Simulator<1> &,
-                                    const VectorType &,
-                                    const VectorType &,
-                                    const VectorType &) const;
-    template void
-    Diffusion<2>::check_solve_input(Simulator<2> &,
-                                    const VectorType &,
-                                    const VectorType &,
-                                    const VectorType &) const;
-    template void
-    Diffusion<3>::check_solve_input(Simulator<3> &,
-                                    const VectorType &,
-                                    const VectorType &,
-                                    const VectorType &) const;
-    template void
-    Diffusion<1>::check_solve_result(Simulator<1> &,
-                                     const bool,
-                                     const double,
-                                     const VectorType &) const;
-    template void
-    Diffusion<2>::check_solve_result(Simulator<2> &,
-                                     const bool,
-                                     const double,
-                                     const VectorType &) const;
-    template void
-    Diffusion<3>::check_solve_result(Simulator<3> &,
-                                     const bool,
-                                     const double,
-                                     const VectorType &) const;
+    template <int dim>
+    void
+    Diffusion<dim>::check_finite(Simulator<dim> &simulator)
+    {
+      // The sources and boundary values were finite where they were
+      // evaluated (else their entry would be named): the solution diverged.
+      std::ostringstream advice;
+      if (stepping == Stepping::explicit_euler)
+        advice << "The run is unstable: reduce 'diffusion/Time step' "
+                  "(forward Euler bound "
+               << dt_bound << ") or check the constants.";
+      else
+        advice << "Check the constants and the solver settings.";
+      finite_check.check_state(
+        *nodes,
+        {{c.begin(), c.locally_owned_size()}},
+        [&](const unsigned int i) {
+          return std::isfinite(c.local_element(op.vector_index(i)));
+        },
+        step_number,
+        time,
+        "The concentration",
+        advice.str(),
+        simulator.get_communicator());
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)                                                   \
+  template void        Diffusion<dim>::check_finite(Simulator<dim> &);              \
+  template std::string Diffusion<dim>::solve_label() const;                         \
+  template void        Diffusion<dim>::check_solve_input(Simulator<dim> &,          \
+                                                  const VectorType &,        \
+                                                  const VectorType &,        \
+                                                  const VectorType &) const; \
+  template void        Diffusion<dim>::check_solve_result(Simulator<dim> &,         \
+                                                   const bool,               \
+                                                   const double,             \
+                                                   const VectorType &) const;
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL
