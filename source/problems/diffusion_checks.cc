@@ -1,3 +1,12 @@
+/**
+ * @file
+ * The checks of the diffusion problem type's state and linear solves: a
+ * concentration that is not finite after a step (check_finite()), the
+ * right-hand side and initial guess of a solve traced back to the entry
+ * that made them not finite (check_solve_input()), and a solve that
+ * overflowed (check_solve_result()).
+ */
+
 #include <deal.II/base/mpi.h>
 
 #include <perideal/base/collective_checks.h>
@@ -16,7 +25,7 @@ namespace PeriDEAL
     std::string
     Diffusion<dim>::solve_label() const
     {
-      if (stepping == "steady state")
+      if (stepping == Stepping::steady_state)
         return "the steady-state solve";
       return "the linear solve of step " + std::to_string(step_number) +
              " (t = " + format_number(time) + ")";
@@ -40,12 +49,11 @@ namespace PeriDEAL
       unsigned int                  node  = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
-          const unsigned int k = op.vector_index(i);
-          const bool         bad =
-            is_prescribed[k] ?
-                      !std::isfinite(x.local_element(k)) :
-                      !std::isfinite(lifted.local_element(k)) ||
-                  !std::isfinite(x.local_element(k));
+          const unsigned int k         = op.vector_index(i);
+          const bool         bad       = is_prescribed[k] ?
+                                           !std::isfinite(x.local_element(k)) :
+                                           !std::isfinite(lifted.local_element(k)) ||
+                               !std::isfinite(x.local_element(k));
           const unsigned int this_kind = is_prescribed[k] ? 0 : 1;
           const auto         dof       = (*nodes)[i].dofs[0];
           if (bad && (this_kind < kind || (this_kind == kind && dof < first)))
@@ -58,8 +66,8 @@ namespace PeriDEAL
       const unsigned int worst = Utilities::MPI::min(kind, comm);
       if (worst == 2)
         return;
-      const auto chosen = Utilities::MPI::min(kind == worst ? first : none,
-                                              comm);
+      const auto chosen =
+        Utilities::MPI::min(kind == worst ? first : none, comm);
       std::string message;
       if (kind == worst && first == chosen)
         {
@@ -76,17 +84,18 @@ namespace PeriDEAL
                    "/Function expression': it is " +
                    (std::isnan(value) ? std::string("NaN") :
                                         format_number(value)) +
-                   " at the node at " + at.str() + " at t = " +
-                   format_number(t) + ", " + role + " of " + solve_label() +
+                   " at the node at " + at.str() +
+                   " at t = " + format_number(t) + ", " + role + " of " +
+                   solve_label() +
                    "; give a function that is finite at every node and "
                    "time.";
           };
           // The times at which the right-hand side evaluates the data.
           std::vector<double> times = {time};
-          if (stepping == "implicit" && theta < 1)
+          if (stepping == Stepping::implicit && theta < 1)
             times.push_back((step_number - 1) * dt);
           const bool first_solve =
-            stepping == "steady state" || step_number <= 1;
+            stepping == Stepping::steady_state || step_number <= 1;
           if (is_prescribed[k])
             message = named("Boundary concentration",
                             x.local_element(k),
@@ -123,14 +132,13 @@ namespace PeriDEAL
                 message = named("Initial concentration",
                                 x.local_element(k),
                                 0,
-                                stepping == "steady state" ?
+                                stepping == Stepping::steady_state ?
                                   "the initial guess" :
                                   "the initial state in the right-hand side");
               if (message.empty())
                 {
                   std::ostringstream text;
-                  text << "The right-hand side of " << solve_label()
-                       << " is "
+                  text << "The right-hand side of " << solve_label() << " is "
                        << (std::isfinite(b.local_element(k)) ?
                              lifted.local_element(k) :
                              b.local_element(k))
@@ -140,8 +148,8 @@ namespace PeriDEAL
                           "the values overflow the range of double "
                           "precision numbers (about 1e308). Check the "
                           "magnitudes of 'diffusion/Diffusivity' ("
-                       << kernel.diffusivity()
-                       << "), 'diffusion/Time step' (" << dt
+                       << kernel.diffusivity() << "), 'diffusion/Time step' ("
+                       << dt
                        << ") and the data. The output written before is "
                           "complete.";
                   message = text.str();
@@ -174,9 +182,9 @@ namespace PeriDEAL
         return;
       // One process reports: the owner of the node, or rank 0 when no
       // node is reported.
-      const bool reporter = chosen != numbers::invalid_dof_index ?
-                              first == chosen :
-                              Utilities::MPI::this_mpi_process(comm) == 0;
+      const bool         reporter = chosen != numbers::invalid_dof_index ?
+                                      first == chosen :
+                                      Utilities::MPI::this_mpi_process(comm) == 0;
       std::ostringstream text;
       if (reporter)
         {
@@ -195,7 +203,7 @@ namespace PeriDEAL
                   "numbers (about 1e308). Check the magnitudes of "
                   "'diffusion/Diffusivity' ("
                << kernel.diffusivity() << ")"
-               << (stepping == "implicit" ?
+               << (stepping == Stepping::implicit ?
                      ", 'diffusion/Time step' (" + format_number(dt) + ")" :
                      std::string())
                << " and the data. The output written before is complete.";
@@ -204,41 +212,47 @@ namespace PeriDEAL
     }
 
 
-    template std::string
-    Diffusion<1>::solve_label() const;
-    template std::string
-    Diffusion<2>::solve_label() const;
-    template std::string
-    Diffusion<3>::solve_label() const;
-    template void
-    Diffusion<1>::check_solve_input(Simulator<1> &,
-                                    const VectorType &,
-                                    const VectorType &,
-                                    const VectorType &) const;
-    template void
-    Diffusion<2>::check_solve_input(Simulator<2> &,
-                                    const VectorType &,
-                                    const VectorType &,
-                                    const VectorType &) const;
-    template void
-    Diffusion<3>::check_solve_input(Simulator<3> &,
-                                    const VectorType &,
-                                    const VectorType &,
-                                    const VectorType &) const;
-    template void
-    Diffusion<1>::check_solve_result(Simulator<1> &,
-                                     const bool,
-                                     const double,
-                                     const VectorType &) const;
-    template void
-    Diffusion<2>::check_solve_result(Simulator<2> &,
-                                     const bool,
-                                     const double,
-                                     const VectorType &) const;
-    template void
-    Diffusion<3>::check_solve_result(Simulator<3> &,
-                                     const bool,
-                                     const double,
-                                     const VectorType &) const;
+    template <int dim>
+    void
+    Diffusion<dim>::check_finite(Simulator<dim> &simulator)
+    {
+      // The sources and boundary values were finite where they were
+      // evaluated (else their entry would be named): the solution diverged.
+      std::ostringstream advice;
+      if (stepping == Stepping::explicit_euler)
+        advice << "The run is unstable: reduce 'diffusion/Time step' "
+                  "(forward Euler bound "
+               << dt_bound << ") or check the constants.";
+      else
+        advice << "Check the constants and the solver settings.";
+      finite_check.check_state(
+        *nodes,
+        {{c.begin(), c.locally_owned_size()}},
+        [&](const unsigned int i) {
+          return std::isfinite(c.local_element(op.vector_index(i)));
+        },
+        step_number,
+        time,
+        "The concentration",
+        advice.str(),
+        simulator.get_communicator());
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)                                                   \
+  template void        Diffusion<dim>::check_finite(Simulator<dim> &);              \
+  template std::string Diffusion<dim>::solve_label() const;                         \
+  template void        Diffusion<dim>::check_solve_input(Simulator<dim> &,          \
+                                                  const VectorType &,        \
+                                                  const VectorType &,        \
+                                                  const VectorType &) const; \
+  template void        Diffusion<dim>::check_solve_result(Simulator<dim> &,         \
+                                                   const bool,               \
+                                                   const double,             \
+                                                   const VectorType &) const;
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

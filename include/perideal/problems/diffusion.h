@@ -62,6 +62,13 @@ namespace PeriDEAL
      *   a CSV of time, total amount, extrema and the error against an
      *   analytical solution (relative l2 norm, paper Eq. 66, over the free
      *   nodes); a progress line on rank 0.
+     *
+     * The sources by job: diffusion.cc (run, set-up, time steps, the
+     * explicit instantiation and the registration), diffusion_parameters.cc
+     * (the input), diffusion_layers.cc (the layers and sources),
+     * diffusion_solve.cc (the linear solves and the local Laplacian),
+     * diffusion_checks.cc (non-finite states and solves) and
+     * diffusion_output.cc (history, progress line, PVTU and CSV).
      */
     template <int dim>
     class Diffusion : public ProblemType<dim>
@@ -125,6 +132,19 @@ namespace PeriDEAL
 
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
+      /// 'Time stepping', parsed once in parse_parameters().
+      enum class Stepping
+      {
+        explicit_euler,
+        implicit,
+        steady_state
+      };
+
+      /// The input text of @p value ('explicit', 'implicit', 'steady
+      /// state'), for messages (diffusion_parameters.cc).
+      static std::string
+      stepping_name(const Stepping value);
+
       void
       setup(Simulator<dim> &simulator);
 
@@ -156,7 +176,7 @@ namespace PeriDEAL
       /**
        * Solve \f$(\alpha I - \beta L)\,x = b\f$ on the free nodes, x given at
        * the Dirichlet nodes (initial guess elsewhere). Returns the
-       * iterations.
+       * iterations (diffusion_solve.cc, as setup_local_laplacian()).
        */
       unsigned int
       solve(Simulator<dim>   &simulator,
@@ -174,6 +194,8 @@ namespace PeriDEAL
                             const double    alpha,
                             const double    beta);
 
+      /// A row of the history (diffusion_output.cc, as the two functions
+      /// below).
       void
       record_history(Simulator<dim> &simulator);
 
@@ -184,12 +206,13 @@ namespace PeriDEAL
       print_progress_line(Simulator<dim> &simulator);
 
       /// Stop naming the step and node when a value is not finite, or the
-      /// entry when an input value was not (collective).
+      /// entry when an input value was not (collective; diffusion_checks.cc,
+      /// as the three functions below).
       void
       check_finite(Simulator<dim> &simulator);
 
       /// "the linear solve of step 3 (t = 0.003)", or "the steady-state
-      /// solve" (diffusion_checks.cc, as the three functions below).
+      /// solve".
       std::string
       solve_label() const;
 
@@ -231,8 +254,8 @@ namespace PeriDEAL
       std::string                                  layer_values = "function";
       std::string                                  flux_values  = "source";
       std::unique_ptr<Models::DiffusionModel<dim>> model;
-      std::string                                  stepping = "explicit";
-      double                                       theta    = 1;
+      Stepping                        stepping = Stepping::explicit_euler;
+      double                          theta    = 1;
       double                          end_time = 1, given_time_step = 0;
       double                          safety_factor   = 0.9;
       bool                            allow_unstable  = false;

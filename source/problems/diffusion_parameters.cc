@@ -1,0 +1,442 @@
+/**
+ * @file
+ * The input of the diffusion problem type: its entries declared with their
+ * patterns and help texts, read and checked (parse_parameters(); 'Time
+ * stepping' into Diffusion::Stepping), the checks against the simulator's
+ * entries (check_input()), and the entries that this run leaves unused
+ * (unused_entries()).
+ */
+
+#include <perideal/base/exceptions.h>
+#include <perideal/boundary/boundary_layers.h>
+#include <perideal/problems/diffusion.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    template <int dim>
+    void
+    Diffusion<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      Models::DiffusionKernel::declare_parameters(prm);
+      prm.declare_entry(
+        "Model",
+        "none",
+        Patterns::Selection(
+          Models::DiffusionModelRegistry<dim>::pattern_string()),
+        "The physics on top of diffusion: none, or corrosion (its entries in "
+        "the subsection of that name).");
+      Models::DiffusionModelRegistry<dim>::declare_parameters(prm);
+      prm.declare_entry(
+        "Time stepping",
+        "explicit",
+        Patterns::Selection("explicit|implicit|steady state"),
+        "explicit: forward Euler with the step below the stability bound; "
+        "implicit: 'Implicit scheme' with a linear solve per step; steady "
+        "state: -L C = S (source and boundary values at t = 0), one solve.");
+      prm.declare_entry("Implicit scheme",
+                        "backward Euler",
+                        Patterns::Selection("backward Euler|Crank-Nicolson"),
+                        "The implicit scheme: theta = 1 or 1/2.");
+      prm.declare_entry("End time", "1", Patterns::Double(), "> 0.");
+      prm.declare_entry(
+        "Time step",
+        "0",
+        Patterns::Double(),
+        "Time step. 0 (explicit only): 'Safety factor' times the stability "
+        "bound 2 / lambda_G of forward Euler (lambda_G: Gershgorin's bound "
+        "of the spectral radius of the discrete operator). The step is "
+        "shortened so that a whole number of steps reaches 'End time'.");
+      prm.declare_entry("Safety factor",
+                        "0.9",
+                        Patterns::Double(),
+                        "Fraction of the stability bound used when 'Time "
+                        "step = 0'; in (0, 1].");
+      prm.declare_entry("Allow unstable time step",
+                        "false",
+                        Patterns::Bool(),
+                        "Accept an explicit 'Time step' above the stability "
+                        "bound (an error otherwise).");
+      prm.declare_entry("Preconditioner",
+                        "local laplacian",
+                        Patterns::Selection("jacobi|local laplacian"),
+                        "Implicit and steady solves: Jacobi on the exact "
+                        "diagonal, or algebraic multigrid on the local "
+                        "Laplacian (cell-centred finite volumes on the same "
+                        "nodes; uniform grids).");
+      Solvers::AmgSettings::declare_parameters(prm, "0.02");
+      prm.declare_entry("Solver tolerance",
+                        "1e-10",
+                        Patterns::Double(),
+                        "Relative residual of the implicit solves; in (0, "
+                        "1).");
+      prm.declare_entry("Maximum iterations",
+                        "1000",
+                        Patterns::Integer(1),
+                        "Iterations of an implicit solve before it fails.");
+      prm.enter_subsection("Initial concentration");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.enter_subsection("Source");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Dirichlet boundary ids",
+                        "",
+                        Patterns::List(Patterns::Integer(0, 254)),
+                        "Boundaries along which 'Boundary concentration' is "
+                        "prescribed in a layer of 'Dirichlet layer "
+                        "thickness'.");
+      prm.declare_entry("Dirichlet layer thickness",
+                        "1",
+                        Patterns::Double(),
+                        "Thickness of the Dirichlet layers, in horizons.");
+      prm.declare_entry(
+        "Dirichlet layer values",
+        "function",
+        Patterns::Selection("function|surface value|mirror"),
+        "How the Dirichlet layers get their values. function: 'Boundary "
+        "concentration' at each layer node (needs the solution in the "
+        "layer, e.g. a manufactured one); surface value: its value at the "
+        "nearest point of the physical surface (the inner face of the "
+        "layer), extended as a constant; mirror: 2 g(x_b) - C(x_m), the "
+        "odd reflection through the surface point x_b of the value at the "
+        "mirror node x_m (second order for a smooth solution; explicit time "
+        "stepping, uniform grids).");
+      prm.enter_subsection("Boundary concentration");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Flux boundary ids",
+                        "",
+                        Patterns::List(Patterns::Integer(0, 254)),
+                        "Boundaries through which 'Boundary flux' enters, as "
+                        "a source (flux / thickness) in a layer of 'Flux "
+                        "layer thickness'.");
+      prm.declare_entry("Flux layer thickness",
+                        "1",
+                        Patterns::Double(),
+                        "Thickness of the flux layers, in horizons.");
+      prm.declare_entry(
+        "Flux layer values",
+        "source",
+        Patterns::Selection("source|mirror"),
+        "How a flux enters. source: the layer is part of the body and "
+        "'Boundary flux' q enters as the source q / thickness in its nodes. "
+        "mirror: the layer is a fictitious layer outside the body (the "
+        "physical surface is its inner face, as for Dirichlet layers) whose "
+        "values are C(x_m) + |x - x_m| q(x_b) / K, the even reflection of "
+        "the mirror node x_m through the surface point x_b with the normal "
+        "gradient the flux gives (zero flux: a plain even reflection); "
+        "second order for a smooth solution; explicit time stepping, "
+        "uniform grids.");
+      prm.enter_subsection("Boundary flux");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Compare with analytical solution",
+                        "false",
+                        Patterns::Bool(),
+                        "Report the error against 'Analytical "
+                        "concentration' (relative l2 norm over the free "
+                        "nodes and the largest nodal error).");
+      prm.enter_subsection("Analytical concentration");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+      prm.leave_subsection();
+      prm.declare_entry("Output every steps",
+                        "0",
+                        Patterns::Integer(0),
+                        "Write PVTU output every this many steps (and at the "
+                        "first and last step). 0: use 'Output interval'.");
+      prm.declare_entry("Output interval",
+                        "0",
+                        Patterns::Double(0),
+                        "Write PVTU output every this much simulated time; 0 "
+                        "(with 'Output every steps = 0'): first and last "
+                        "step only.");
+      prm.declare_entry("History every steps",
+                        "10",
+                        Patterns::Integer(1),
+                        "A row of the history file (and a progress check) "
+                        "every this many steps.");
+      prm.declare_entry("History file",
+                        "history.csv",
+                        Patterns::FileName(),
+                        "CSV of time, step, total amount, minimum, maximum, "
+                        "solver iterations and errors, in "
+                        "'Output/Directory'. Empty: not written.");
+      prm.declare_entry("Progress interval",
+                        "5",
+                        Patterns::Double(0),
+                        "Print a progress line on rank 0 at most every this "
+                        "many seconds of wall time.");
+      TimeLoop::declare_parameters(prm);
+    }
+
+
+    template <int dim>
+    std::string
+    Diffusion<dim>::stepping_name(const Stepping value)
+    {
+      switch (value)
+        {
+          case Stepping::explicit_euler:
+            return "explicit";
+          case Stepping::implicit:
+            return "implicit";
+          case Stepping::steady_state:
+            return "steady state";
+        }
+      Assert(false, ExcInternalError());
+      return "";
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      kernel.parse_parameters(prm, section);
+      const std::string stepping_text = prm.get("Time stepping");
+      for (const auto value : {Stepping::explicit_euler,
+                               Stepping::implicit,
+                               Stepping::steady_state})
+        if (stepping_name(value) == stepping_text)
+          stepping = value;
+      Assert(stepping_name(stepping) == stepping_text,
+             ExcInternalError()); // the pattern admits these three only
+      model_name = prm.get("Model");
+      model      = Models::DiffusionModelRegistry<dim>::create(model_name, prm);
+      AssertThrow(stepping == Stepping::explicit_euler ||
+                    model->supports_implicit(),
+                  ExcInvalidInput(section + "/Time stepping",
+                                  stepping_text,
+                                  "the model '" + model_name +
+                                    "' runs with explicit time stepping "
+                                    "only"));
+      model_columns = model->history_columns();
+      theta         = prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5;
+      end_time      = prm.get_double("End time");
+      AssertThrow(end_time > 0 || stepping == Stepping::steady_state,
+                  ExcInvalidInput(section + "/End time",
+                                  prm.get("End time"),
+                                  "give a simulated time > 0"));
+      given_time_step = prm.get_double("Time step");
+      AssertThrow(given_time_step >= 0 &&
+                    (given_time_step > 0 || stepping != Stepping::implicit),
+                  ExcInvalidInput(section + "/Time step",
+                                  prm.get("Time step"),
+                                  stepping == Stepping::implicit ?
+                                    "implicit time stepping needs a time "
+                                    "step > 0" :
+                                    "give a step > 0, or 0 for the "
+                                    "stability bound"));
+      safety_factor = prm.get_double("Safety factor");
+      AssertThrow(safety_factor > 0 && safety_factor <= 1,
+                  ExcInvalidInput(section + "/Safety factor",
+                                  prm.get("Safety factor"),
+                                  "give a fraction in (0, 1]"));
+      allow_unstable  = prm.get_bool("Allow unstable time step");
+      local_laplacian = prm.get("Preconditioner") == "local laplacian";
+      amg_settings.parse_parameters(prm);
+      tolerance = prm.get_double("Solver tolerance");
+      AssertThrow(tolerance > 0 && tolerance < 1,
+                  ExcInvalidInput(section + "/Solver tolerance",
+                                  prm.get("Solver tolerance"),
+                                  "give a relative tolerance in (0, 1)"));
+      max_iterations = prm.get_integer("Maximum iterations");
+
+      const auto parse =
+        [&](const std::string &name, auto &function, FunctionEntry &entry) {
+          function = parse_function<dim>(prm, name, section, 1, &entry);
+          expressions[name] = entry.expression;
+          return entry.expression;
+        };
+      parse("Initial concentration", initial, initial_entry);
+      with_source = parse("Source", source, source_entry) != "0";
+      parse("Boundary concentration", boundary_value, boundary_value_entry);
+      with_flux =
+        parse("Boundary flux", boundary_flux, boundary_flux_entry) != "0";
+      parse("Analytical concentration", analytical, analytical_entry);
+      compare = prm.get_bool("Compare with analytical solution");
+
+      dirichlet_ids_text = prm.get("Dirichlet boundary ids");
+      flux_ids_text      = prm.get("Flux boundary ids");
+      dirichlet_ids      = Boundary::parse_boundary_ids(dirichlet_ids_text);
+      flux_ids           = Boundary::parse_boundary_ids(flux_ids_text);
+      dirichlet_thickness_text = prm.get("Dirichlet layer thickness");
+      layer_values             = prm.get("Dirichlet layer values");
+      flux_values              = prm.get("Flux layer values");
+      flux_thickness_text      = prm.get("Flux layer thickness");
+      dirichlet_thickness      = prm.get_double("Dirichlet layer thickness");
+      flux_thickness           = prm.get_double("Flux layer thickness");
+      // What every kind of layer needs: a thickness > 0; and for mirror
+      // layers explicit stepping (their values depend on the solution) and
+      // at most one horizon (an image lies up to two thicknesses away, and
+      // the node set holds the off-process nodes within two horizons).
+      const auto check_layer = [&](const std::string &kind,
+                                   const std::string &values,
+                                   const double       thickness,
+                                   const std::string &thickness_text,
+                                   const std::string &alternative) {
+        AssertThrow(thickness > 0,
+                    ExcInvalidInput(section + "/" + kind + " layer thickness",
+                                    thickness_text,
+                                    "give a thickness > 0 (in horizons)"));
+        if (values != "mirror")
+          return;
+        AssertThrow(stepping == Stepping::explicit_euler,
+                    ExcInvalidInput(section + "/" + kind + " layer values",
+                                    values,
+                                    "mirror layers need 'Time stepping = "
+                                    "explicit' (their values depend on the "
+                                    "solution); use " +
+                                      alternative));
+        AssertThrow(thickness <= 1,
+                    ExcInvalidInput(section + "/" + kind + " layer thickness",
+                                    thickness_text,
+                                    "mirror layers reach nodes up to two "
+                                    "layer thicknesses away: give at most 1 "
+                                    "(horizon)"));
+      };
+      check_layer("Dirichlet",
+                  layer_values,
+                  dirichlet_thickness,
+                  dirichlet_thickness_text,
+                  "'surface value' or 'function'");
+      check_layer("Flux",
+                  flux_values,
+                  flux_thickness,
+                  flux_thickness_text,
+                  "'source'");
+      for (const auto id : flux_ids)
+        AssertThrow(std::find(dirichlet_ids.begin(), dirichlet_ids.end(), id) ==
+                      dirichlet_ids.end(),
+                    ExcInvalidInput(section + "/Flux boundary ids",
+                                    flux_ids_text,
+                                    "boundary id " + std::to_string(id) +
+                                      " is also in 'Dirichlet boundary ids'; a "
+                                      "face carries either a value or a flux"));
+      AssertThrow(stepping != Stepping::steady_state || !dirichlet_ids.empty(),
+                  ExcInvalidInput(section + "/Dirichlet boundary ids",
+                                  dirichlet_ids_text,
+                                  "a steady state needs prescribed values "
+                                  "somewhere (otherwise it is not unique): "
+                                  "list at least one boundary id"));
+
+      output_every_steps  = prm.get_integer("Output every steps");
+      output_interval     = prm.get_double("Output interval");
+      history_every_steps = prm.get_integer("History every steps");
+      history_file        = prm.get("History file");
+      progress_interval_s = prm.get_double("Progress interval");
+      time_loop.parse_parameters(prm, section, "");
+    }
+
+
+    template <int dim>
+    void
+    Diffusion<dim>::check_input(const Simulator<dim> &simulator) const
+    {
+      AssertThrow(simulator.get_boundary_treatment_name() == "none",
+                  ExcInvalidInput("Boundary treatment/Treatment",
+                                  simulator.get_boundary_treatment_name(),
+                                  "the diffusion problem supports the 'none' "
+                                  "treatment only so far"));
+      AssertThrow(simulator.get_node_data_file().empty(),
+                  ExcInvalidInput("Output/Node data file",
+                                  simulator.get_node_data_file(),
+                                  "the node data file is written by the "
+                                  "quasi-static problem only; leave it "
+                                  "empty"));
+    }
+
+
+    template <int dim>
+    std::vector<UnusedEntry>
+    Diffusion<dim>::unused_entries(const Simulator<dim> &) const
+    {
+      const std::string        prefix = section + "/";
+      std::vector<UnusedEntry> unused = {
+        {"Boundary conditions/",
+         "the diffusion problem takes its boundary values and fluxes from "
+         "'diffusion/Dirichlet boundary ids', 'Boundary concentration', "
+         "'Flux boundary ids' and 'Boundary flux'; remove the subsection "
+         "'Boundary conditions'"},
+        {"Analytical solution/",
+         "the diffusion problem compares with 'diffusion/Analytical "
+         "concentration' when 'diffusion/Compare with analytical solution' "
+         "is true; remove the subsection 'Analytical solution'"}};
+      const auto add = [&](const std::vector<std::string> &entries,
+                           const std::string              &why) {
+        for (const auto &entry : entries)
+          unused.push_back({prefix + entry, why});
+      };
+      if (stepping != Stepping::implicit)
+        add({"Implicit scheme"},
+            "'Time stepping = " + stepping_name(stepping) +
+              "' uses no implicit scheme; set 'Time stepping = implicit' to "
+              "use it, or remove the entry");
+      if (stepping == Stepping::explicit_euler)
+        add({"Preconditioner", "Solver tolerance", "Maximum iterations"},
+            "'Time stepping = explicit' solves no linear system; remove the "
+            "entry, or choose 'implicit' or 'steady state'");
+      if (stepping == Stepping::steady_state)
+        add({"Time step",
+             "End time",
+             "Output every steps",
+             "Output interval",
+             "History every steps"},
+            "'Time stepping = steady state' takes no time steps (one solve, "
+            "one output, sources and boundary values at t = 0); remove the "
+            "entry, or choose 'explicit' or 'implicit'");
+      if (stepping != Stepping::explicit_euler || given_time_step > 0)
+        add({"Safety factor"},
+            stepping != Stepping::explicit_euler ?
+              "the time step of 'Time stepping = " + stepping_name(stepping) +
+                "' is 'Time step' itself; remove the entry" :
+              std::string("'Time step' is given, so no fraction of the "
+                          "stability bound is taken; set 'Time step = 0' to "
+                          "use it, or remove the entry"));
+      if (stepping != Stepping::explicit_euler || given_time_step == 0)
+        add({"Allow unstable time step"},
+            stepping != Stepping::explicit_euler ?
+              "'Time stepping = " + stepping_name(stepping) +
+                "' has no stability bound to exceed; remove the entry" :
+              std::string("with 'Time step = 0' the step is 'Safety "
+                          "factor' (at most 1) times the stability bound, "
+                          "never above it; remove the entry"));
+      if (dirichlet_ids.empty())
+        add({"Dirichlet layer thickness",
+             "Dirichlet layer values",
+             "Boundary concentration/"},
+            "no 'Dirichlet boundary ids' are given, so there is no "
+            "Dirichlet layer; give them, or remove the entry");
+      if (flux_ids.empty())
+        add({"Flux layer thickness", "Flux layer values", "Boundary flux/"},
+            "no 'Flux boundary ids' are given, so no flux enters; give "
+            "them, or remove the entry");
+      if (!compare)
+        add({"Analytical concentration/"},
+            "'diffusion/Compare with analytical solution' is false; set it "
+            "to true to compare, or remove the entry");
+      for (const auto &rule : model->unused_entries())
+        unused.push_back({prefix + rule.pattern, rule.why});
+      return unused;
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)                                              \
+  template void        Diffusion<dim>::declare_parameters(ParameterHandler &); \
+  template std::string Diffusion<dim>::stepping_name(const Stepping);          \
+  template void        Diffusion<dim>::parse_parameters(ParameterHandler &);   \
+  template void Diffusion<dim>::check_input(const Simulator<dim> &) const;     \
+  template std::vector<UnusedEntry> Diffusion<dim>::unused_entries(            \
+    const Simulator<dim> &) const;
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
+  } // namespace Problems
+} // namespace PeriDEAL
