@@ -246,13 +246,12 @@ namespace PeriDEAL
                                       "variable; a load that varies in space "
                                       "belongs in 'Boundary conditions')"));
         }
-      initial_displacement =
-        parse_function<dim>(prm,
-                            "Initial displacement",
-                            "explicit dynamics",
-                            dim,
-                            &initial_displacement_entry);
-      initial_velocity = parse_function<dim>(prm,
+      initial_displacement = parse_function<dim>(prm,
+                                                 "Initial displacement",
+                                                 "explicit dynamics",
+                                                 dim,
+                                                 &initial_displacement_entry);
+      initial_velocity     = parse_function<dim>(prm,
                                              "Initial velocity",
                                              "explicit dynamics",
                                              dim,
@@ -666,12 +665,13 @@ namespace PeriDEAL
         const double bound = 2 / std::sqrt(lambda);
         if (std::isfinite(bound) && bound > 0)
           return;
-        const double stiffness = op.gershgorin_eigenvalue_bound(1.);
-        const double rho       = simulator.get_model().density();
+        const double      stiffness = op.gershgorin_eigenvalue_bound(1.);
+        const double      rho       = simulator.get_model().density();
         const std::string why =
           "the stable time step 2 / sqrt(lambda) is " + format_number(bound) +
           ": Gershgorin's bound lambda of M^{-1} K, the bond stiffness (" +
-          format_number(stiffness) + " per unit density) over the density, "
+          format_number(stiffness) +
+          " per unit density) over the density, "
           "is " +
           format_number(lambda) +
           ", out of the range of double precision numbers (about 1e-308 to "
@@ -690,14 +690,13 @@ namespace PeriDEAL
                                           "1 in nondimensional units)"));
           }
         const std::string entry = simulator.get_stiffness_entry().first;
-        AssertThrow(false,
-                    ExcInvalidInput(entry.substr(0, entry.rfind('/') + 1) +
-                                      "Density",
-                                    format_number(rho),
-                                    why +
-                                      "the density of a real material, about "
-                                      "1 to 2e4 kg/m^3 (or of order 1 in "
-                                      "nondimensional units)"));
+        AssertThrow(
+          false,
+          ExcInvalidInput(entry.substr(0, entry.rfind('/') + 1) + "Density",
+                          format_number(rho),
+                          why + "the density of a real material, about "
+                                "1 to 2e4 kg/m^3 (or of order 1 in "
+                                "nondimensional units)"));
       }
     } // namespace
 
@@ -855,8 +854,8 @@ namespace PeriDEAL
                   std::ostringstream text;
                   text << "The load is not finite at t = " << t
                        << " s: component " << c << " of '"
-                       << conditions.load_entry(load_sites[s])
-                       << "' is " << f[c] << " at (" << load_sites[s].point
+                       << conditions.load_entry(load_sites[s]) << "' is "
+                       << f[c] << " at (" << load_sites[s].point
                        << "); give an expression that is finite on the "
                           "whole body and its loaded faces for every t up "
                           "to 'End time'. The output written before is "
@@ -1064,8 +1063,8 @@ namespace PeriDEAL
       if (dt <= dt_bound)
         {
           for (unsigned int k = 0; k < a.locally_owned_size(); ++k)
-            verlet_term += mass.local_element(k) * a.local_element(k) *
-                           a.local_element(k);
+            verlet_term +=
+              mass.local_element(k) * a.local_element(k) * a.local_element(k);
           verlet_term = dt * dt / 8 * Utilities::MPI::sum(verlet_term, comm);
         }
       energy_monitor.check(kinetic,
@@ -1219,12 +1218,12 @@ namespace PeriDEAL
       const auto &output = simulator.get_output();
       auto        names  = output.output_names(true);
       for (const std::string suffix : {"", ".new", ".old"})
-        names.push_back({"Output/Directory",
-                         output.directory(),
-                         output.directory() + "/checkpoint" + suffix,
-                         IO::OutputName::Kind::directory,
-                         "the checkpoint directory 'checkpoint" + suffix +
-                           "'"});
+        names.push_back(
+          {"Output/Directory",
+           output.directory(),
+           output.directory() + "/checkpoint" + suffix,
+           IO::OutputName::Kind::directory,
+           "the checkpoint directory 'checkpoint" + suffix + "'"});
       if (!energy_file.empty())
         names.push_back({"explicit dynamics/Energy file",
                          energy_file,

@@ -237,8 +237,7 @@ namespace PeriDEAL
           char buffer[4096];
           while (n > 0)
             {
-              const std::size_t k =
-                std::min<std::uint64_t>(n, sizeof(buffer));
+              const std::size_t k = std::min<std::uint64_t>(n, sizeof(buffer));
               read(buffer, k);
               n -= k;
             }
@@ -253,9 +252,9 @@ namespace PeriDEAL
         Checksum checksum;
 
       private:
-        std::ifstream       in;
-        const std::string   file;
-        std::uint64_t       left;
+        std::ifstream     in;
+        const std::string file;
+        std::uint64_t     left;
       };
 
       /// The size of @p path, or an error naming it.
@@ -336,8 +335,8 @@ namespace PeriDEAL
           if (ta[k] != tb[k])
             {
               char        *end_a = nullptr, *end_b = nullptr;
-              const double x     = std::strtod(ta[k].c_str(), &end_a);
-              const double y     = std::strtod(tb[k].c_str(), &end_b);
+              const double x = std::strtod(ta[k].c_str(), &end_a);
+              const double y = std::strtod(tb[k].c_str(), &end_b);
               if (*end_a != '\0' || *end_b != '\0' || end_a == ta[k].c_str() ||
                   end_b == tb[k].c_str() || x != y)
                 return false;
@@ -392,7 +391,8 @@ namespace PeriDEAL
       // The mesh file's content is in the hash of the node positions.
       add("Geometry/Mesh");
       if (entries["Geometry/Mesh"] == "subdivided box")
-        for (const char *name : {"Lower corner", "Upper corner", "Subdivisions"})
+        for (const char *name :
+             {"Lower corner", "Upper corner", "Subdivisions"})
           add(std::string("Geometry/") + name);
       add("Geometry/Global refinements");
       std::vector<std::string> own = {"Kinematics",
@@ -425,8 +425,8 @@ namespace PeriDEAL
 
       // One checksum per node, of its position and volume, summed (mod
       // 2^64): the total does not depend on the partition.
-      std::uint64_t             node_sum = 0;
-      std::array<double, dim>   lower, upper;
+      std::uint64_t           node_sum = 0;
+      std::array<double, dim> lower, upper;
       lower.fill(std::numeric_limits<double>::infinity());
       upper.fill(-std::numeric_limits<double>::infinity());
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
@@ -444,11 +444,11 @@ namespace PeriDEAL
           // A final mix (splitmix64), so that sums of similar nodes do not
           // cancel.
           std::uint64_t z = node.value;
-          z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-          z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+          z               = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+          z               = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
           node_sum += z ^ (z >> 31);
         }
-      node_sum = Utilities::MPI::sum(node_sum, comm);
+      node_sum        = Utilities::MPI::sum(node_sum, comm);
       std::string box = "(";
       for (unsigned int d = 0; d < dim; ++d)
         box += (d > 0 ? ", " : "") + exact(Utilities::MPI::min(lower[d], comm));
@@ -459,7 +459,8 @@ namespace PeriDEAL
       const std::uint64_t n_nodes =
         Utilities::MPI::sum<std::uint64_t>(nodes.n_owned(), comm);
       const std::uint64_t n_bonds = Utilities::MPI::sum<std::uint64_t>(
-        simulator.get_neighbor_lists().n_owned_bonds(), comm);
+        simulator.get_neighbor_lists().n_owned_bonds(),
+        comm);
 
       // The columns of the energy file, as write_output() writes them.
       std::string columns = "time,step,kinetic_energy,elastic_energy,"
@@ -474,7 +475,7 @@ namespace PeriDEAL
       const std::string mesh =
         "the mesh: 'Geometry/...' or the content of 'Geometry/Mesh file'";
       checkpoint_state_keys = checkpoint_inputs;
-      const auto add = [&](const std::string &name,
+      const auto add        = [&](const std::string &name,
                            const std::string &value,
                            const std::string &hint) {
         checkpoint_state_keys.push_back({name, value, false, hint});
@@ -489,8 +490,8 @@ namespace PeriDEAL
           std::to_string(n_bonds),
           "the horizon, the mesh and 'Partial volumes/Algorithm'");
       add("critical stretch",
-          exact(simulator.get_model().critical_stretch(
-            simulator.get_horizon())),
+          exact(
+            simulator.get_model().critical_stretch(simulator.get_horizon())),
           "the failure constants of 'Material model' and the horizon");
       add("energy file columns",
           columns,
@@ -510,13 +511,13 @@ namespace PeriDEAL
     void
     ExplicitDynamics<dim>::write_checkpoint(Simulator<dim> &simulator)
     {
-      namespace fs         = std::filesystem;
-      const MPI_Comm comm  = simulator.get_communicator();
-      const auto     rank  = Utilities::MPI::this_mpi_process(comm);
+      namespace fs        = std::filesystem;
+      const MPI_Comm comm = simulator.get_communicator();
+      const auto     rank = Utilities::MPI::this_mpi_process(comm);
       const fs::path base(simulator.get_output().directory());
       const fs::path fresh = base / "checkpoint.new",
                      good = base / "checkpoint", old = base / "checkpoint.old";
-      const auto    &keys  = checkpoint_keys(simulator);
+      const auto &keys = checkpoint_keys(simulator);
       {
         std::string error;
         if (rank == 0)
@@ -542,7 +543,8 @@ namespace PeriDEAL
       // This process's state file: number of records, size, checksum.
       std::vector<std::uint64_t> piece;
       {
-        const fs::path path = fresh / ("state." + std::to_string(rank) + ".bin");
+        const fs::path path =
+          fresh / ("state." + std::to_string(rank) + ".bin");
         ChecksumWriter out(path);
         out.put(magic);
         out.put<std::uint64_t>(nodes.n_owned());
@@ -670,13 +672,13 @@ namespace PeriDEAL
       {
         std::uint64_t records, bytes, checksum;
       };
-      std::uint64_t                                    writers = 0;
-      double                                           saved_time = 0;
-      std::uint64_t                                    saved_step = 0;
-      double                                           saved_work = 0;
-      double                                           saved_load = 0;
+      std::uint64_t                                    writers      = 0;
+      double                                           saved_time   = 0;
+      std::uint64_t                                    saved_step   = 0;
+      double                                           saved_work   = 0;
+      double                                           saved_load   = 0;
       std::uint64_t                                    saved_broken = 0;
-      double                                           saved_next = 0;
+      double                                           saved_next   = 0;
       std::vector<std::vector<double>>                 saved_rows;
       std::vector<std::pair<double, std::string>>      saved_records;
       std::vector<std::pair<std::string, std::string>> saved_keys;
@@ -699,7 +701,7 @@ namespace PeriDEAL
             in.corrupt("is not a PeriDEAL dynamics checkpoint (its first "
                        "bytes are not 'PERIDYN3')");
           // Each writer has an entry of 24 bytes in the table at the end.
-          writers = in.get_count(24,
+          writers    = in.get_count(24,
                                  std::numeric_limits<std::uint32_t>::max(),
                                  "number of processes that wrote it",
                                  "processes an MPI run can have");
@@ -711,10 +713,11 @@ namespace PeriDEAL
           saved_load   = in.get<double>();
           saved_broken = in.get<std::uint64_t>();
           saved_next   = in.get<double>();
-          saved_rows.resize(in.get_count(8,
-                                         std::numeric_limits<std::uint64_t>::max(),
-                                         "number of energy rows",
-                                         ""));
+          saved_rows.resize(
+            in.get_count(8,
+                         std::numeric_limits<std::uint64_t>::max(),
+                         "number of energy rows",
+                         ""));
           for (unsigned int k = 0; k < saved_rows.size(); ++k)
             {
               saved_rows[k].resize(
@@ -746,7 +749,10 @@ namespace PeriDEAL
               name  = in.get_string("length of an entry's name");
               value = in.get_string("length of an entry's value");
             }
-          if (in.get_count(24, writers, "number of state files", "processes "
+          if (in.get_count(24,
+                           writers,
+                           "number of state files",
+                           "processes "
                            "that wrote it (its header)") != writers)
             in.corrupt("lists fewer state files than processes wrote it");
           pieces.resize(writers);
@@ -777,15 +783,14 @@ namespace PeriDEAL
       // every process: every process throws alike.)
       std::map<std::string, std::string> saved(saved_keys.begin(),
                                                saved_keys.end());
-      std::vector<std::string> differ;
-      const CheckpointKey     *first = nullptr;
+      std::vector<std::string>           differ;
+      const CheckpointKey               *first = nullptr;
       for (const auto &key : keys)
         {
-          const auto it = saved.find(key.name);
-          const bool same =
-            it != saved.end() && (key.is_entry ?
-                                    same_value(it->second, key.value) :
-                                    it->second == key.value);
+          const auto it   = saved.find(key.name);
+          const bool same = it != saved.end() &&
+                            (key.is_entry ? same_value(it->second, key.value) :
+                                            it->second == key.value);
           if (!same)
             {
               if (first == nullptr)
@@ -801,16 +806,16 @@ namespace PeriDEAL
           if (std::none_of(keys.begin(), keys.end(), [&](const auto &key) {
                 return key.name == name;
               }))
-            AssertThrow(false,
-                        ExcInvalidInput(
-                          "explicit dynamics/Resume from checkpoint",
-                          "true",
-                          "the checkpoint in '" + dir.string() +
-                            "' was written by an input with the entry '" +
-                            name + " = " + value +
-                            "', which this input does not use; resume with "
-                            "the input that wrote it, or start afresh "
-                            "without 'Resume from checkpoint'"));
+            AssertThrow(
+              false,
+              ExcInvalidInput("explicit dynamics/Resume from checkpoint",
+                              "true",
+                              "the checkpoint in '" + dir.string() +
+                                "' was written by an input with the entry '" +
+                                name + " = " + value +
+                                "', which this input does not use; resume with "
+                                "the input that wrote it, or start afresh "
+                                "without 'Resume from checkpoint'"));
       if (first != nullptr)
         {
           const auto        it = saved.find(first->name);
@@ -818,41 +823,39 @@ namespace PeriDEAL
             it == saved.end() ? std::string() : it->second;
           std::string others;
           for (const auto &name : differ)
-            others += (others.empty() ? " (other entries that differ: " :
-                                        ", ") +
-                      name;
+            others +=
+              (others.empty() ? " (other entries that differ: " : ", ") + name;
           if (!others.empty())
             others += ")";
           if (first->is_entry)
-            AssertThrow(false,
-                        ExcInvalidInput(
-                          first->name,
-                          first->value,
-                          (it == saved.end() ?
-                             "the checkpoint in '" + dir.string() +
-                               "' was written by an input without this "
-                               "entry; remove it to resume" :
-                             "the checkpoint in '" + dir.string() +
-                               "' was written with '" + old_value +
-                               "'; set '" + first->name + "' back to '" +
-                               old_value + "' to resume from it") +
-                            ", or start afresh without 'explicit "
-                            "dynamics/Resume from checkpoint'" +
-                            others));
-          AssertThrow(false,
-                      ExcInvalidInput(
-                        "explicit dynamics/Resume from checkpoint",
-                        "true",
-                        "the checkpoint in '" + dir.string() +
-                          "' does not fit this input: its " + first->name +
-                          " is " +
-                          (it == saved.end() ? "not recorded" :
-                                               "'" + old_value + "'") +
-                          ", this input's '" + first->value +
-                          "' (it follows from " + first->hint +
-                          "); resume with the input that wrote it, or "
-                          "start afresh without 'Resume from checkpoint'" +
-                          others));
+            AssertThrow(
+              false,
+              ExcInvalidInput(first->name,
+                              first->value,
+                              (it == saved.end() ?
+                                 "the checkpoint in '" + dir.string() +
+                                   "' was written by an input without this "
+                                   "entry; remove it to resume" :
+                                 "the checkpoint in '" + dir.string() +
+                                   "' was written with '" + old_value +
+                                   "'; set '" + first->name + "' back to '" +
+                                   old_value + "' to resume from it") +
+                                ", or start afresh without 'explicit "
+                                "dynamics/Resume from checkpoint'" +
+                                others));
+          AssertThrow(
+            false,
+            ExcInvalidInput(
+              "explicit dynamics/Resume from checkpoint",
+              "true",
+              "the checkpoint in '" + dir.string() +
+                "' does not fit this input: its " + first->name + " is " +
+                (it == saved.end() ? "not recorded" : "'" + old_value + "'") +
+                ", this input's '" + first->value + "' (it follows from " +
+                first->hint +
+                "); resume with the input that wrote it, or "
+                "start afresh without 'Resume from checkpoint'" +
+                others));
         }
 
       // The counts of the table against the mesh: the keys match, so only
@@ -864,20 +867,19 @@ namespace PeriDEAL
       for (const auto &key : keys)
         if (key.name == "energy file columns")
           width = 1 + std::count(key.value.begin(), key.value.end(), ',');
-      AssertThrow(n_records == n_nodes &&
-                    std::all_of(saved_rows.begin(),
-                                saved_rows.end(),
-                                [&](const auto &row) {
-                                  return row.size() == width;
-                                }),
-                  ExcMessage(corrupt_message(
-                    run_path.string(),
-                    n_records != n_nodes ?
-                      "lists " + std::to_string(n_records) +
-                        " node records for a mesh of " +
-                        std::to_string(n_nodes) + " nodes" :
-                      "has energy rows of another width than its " +
-                        std::to_string(width) + " columns")));
+      AssertThrow(
+        n_records == n_nodes &&
+          std::all_of(saved_rows.begin(),
+                      saved_rows.end(),
+                      [&](const auto &row) { return row.size() == width; }),
+        ExcMessage(
+          corrupt_message(run_path.string(),
+                          n_records != n_nodes ?
+                            "lists " + std::to_string(n_records) +
+                              " node records for a mesh of " +
+                              std::to_string(n_nodes) + " nodes" :
+                            "has energy rows of another width than its " +
+                              std::to_string(width) + " columns")));
       time             = saved_time;
       step_number      = saved_step;
       external_work    = saved_work;
@@ -919,7 +921,7 @@ namespace PeriDEAL
                 in.corrupt("is not a PeriDEAL dynamics state file (its "
                            "first bytes are not 'PERIDYN3')");
               const auto record_bytes = (1 + 4 * dim) * sizeof(double) + 8;
-              const auto n = in.get_count(record_bytes,
+              const auto n            = in.get_count(record_bytes,
                                           pieces[r].records,
                                           "number of node records",
                                           "recorded in run.bin for it");
@@ -1069,8 +1071,9 @@ namespace PeriDEAL
               "= true' to start afresh and replace it (or choose another "
               "'Output/Directory')";
             const std::string mine = "the first checkpoint of this run (step " +
-                                     std::to_string(first) + ", t = " +
-                                     format_number(first_time) + " s)";
+                                     std::to_string(first) +
+                                     ", t = " + format_number(first_time) +
+                                     " s)";
             if (!readable)
               error = "Invalid value 'false' for the parameter 'explicit "
                       "dynamics/Resume from checkpoint': '" +
