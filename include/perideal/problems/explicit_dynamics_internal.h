@@ -1,0 +1,36 @@
+#ifndef perideal_problems_explicit_dynamics_internal_h
+#define perideal_problems_explicit_dynamics_internal_h
+
+/**
+ * @file
+ * What the source files of the explicit dynamics problem type
+ * (Problems::ExplicitDynamics) share besides the class: the format of
+ * numbers in their messages. Not part of the library's interface.
+ */
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    namespace internal
+    {
+      namespace ExplicitDynamicsImplementation
+      {
+        /// @p x with 6 significant digits, for messages.
+        inline std::string
+        to_string(const double x)
+        {
+          std::ostringstream s;
+          s << std::setprecision(6) << x;
+          return s.str();
+        }
+      } // namespace ExplicitDynamicsImplementation
+    }   // namespace internal
+  }     // namespace Problems
+} // namespace PeriDEAL
+
+#endif
