@@ -123,22 +123,19 @@ namespace PeriDEAL
         {
           const Preconditioner &preconditioner =
             setup_preconditioner(OperatorForm::matrix_free, std::move(setup));
+          const auto krylov = [&](const auto &precondition) {
+            run_krylov(method_value,
+                       gmres_data<VectorType>(restart_length),
+                       control,
+                       op,
+                       solution,
+                       rhs,
+                       precondition);
+          };
           if (preconditioner.is_identity())
-            run_krylov(method_value,
-                       gmres_data<VectorType>(restart_length),
-                       control,
-                       op,
-                       solution,
-                       rhs,
-                       PreconditionIdentity());
+            krylov(PreconditionIdentity());
           else
-            run_krylov(method_value,
-                       gmres_data<VectorType>(restart_length),
-                       control,
-                       op,
-                       solution,
-                       rhs,
-                       PluginPreconditioner<VectorType>{preconditioner});
+            krylov(PluginPreconditioner<VectorType>{preconditioner});
         }
       catch (const SolverControl::NoConvergence &e)
         {
