@@ -5,7 +5,7 @@
 // The pieces a PD computation is built from, without the driver:
 //   mesh (p4est) -> DoFHandler(FE_DGQ(0)^dim) -> NodeSet (nodes + ghosts)
 //   -> NeighborList (bonds, partial-volume weights) -> Model
-//   -> LinearPeridynamicOperator (forces without a matrix, or the matrix).
+//   -> BondOperator (forces without a matrix, or the matrix).
 // See README.md.
 
 #include <deal.II/base/mpi.h>
@@ -24,11 +24,13 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
+#include <perideal/operators/bond_operator.h>
 #include <perideal/quadrature/partial_volume.h>
 
+#include <array>
 #include <iomanip>
 #include <iostream>
+#include <vector>
 
 using namespace dealii;
 using namespace PeriDEAL;
@@ -77,22 +79,16 @@ main(int argc, char **argv)
   f_exact[1] = c * 2 * mu;
   f_exact[2] = c * 2 * mu;
 
-  const IndexSet               &owned    = dof_handler.locally_owned_dofs();
-  const IndexSet                relevant = nodes.relevant_dofs();
-  TrilinosWrappers::MPI::Vector u_owned(owned, comm), u(owned, relevant, comm),
-    force(owned, comm);
+  // The nodal values of u at the owned nodes; the operator's vectors hold
+  // every node of the set (owned and ghosts), so they are sized by it below.
+  std::vector<std::array<double, dim>> u_nodes(nodes.n_owned());
   for (unsigned int i = 0; i < nodes.n_owned(); ++i)
     {
-      const Point<dim> &x          = nodes[i].location;
-      const double      value[dim] = {c * (x[0] * x[0] + 2 * x[1] * x[1] +
-                                      x[1] * x[2]),
-                                      c * (x[0] * x[1] + x[2] * x[2]),
-                                      c * (x[0] * x[2] + x[1] * x[1])};
-      for (unsigned int d = 0; d < dim; ++d)
-        u_owned[nodes[i].dofs[d]] = value[d];
+      const Point<dim> &x = nodes[i].location;
+      u_nodes[i]          = {{c * (x[0] * x[0] + 2 * x[1] * x[1] + x[1] * x[2]),
+                              c * (x[0] * x[1] + x[2] * x[2]),
+                              c * (x[0] * x[2] + x[1] * x[1])}};
     }
-  u_owned.compress(VectorOperation::insert);
-  u = u_owned;
 
   pcout
     << "step-2: PD force of a quadratic field, 3D LPS, " << n
@@ -111,8 +107,15 @@ main(int argc, char **argv)
 
       Discretization::NeighborList<dim> lists;
       lists.reinit(nodes, horizon, *algorithm, model->is_state_based());
-      Operators::LinearPeridynamicOperator<dim> op;
+      Operators::BondOperator<dim> op;
       op.reinit(nodes, lists, *model, horizon);
+      Operators::BondOperator<dim>::VectorType u, force;
+      op.initialize_dof_vector(u);
+      op.initialize_dof_vector(force);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          u(nodes[i].dofs[d]) = u_nodes[i][d];
+      u.update_ghost_values();
       op.apply(u, force);
       const double seconds = Utilities::MPI::max(timer.wall_time(), comm);
 
@@ -130,7 +133,7 @@ main(int argc, char **argv)
             continue;
           Tensor<1, dim> f;
           for (unsigned int d = 0; d < dim; ++d)
-            f[d] = force[nodes[i].dofs[d]] / nodes[i].volume();
+            f[d] = force(nodes[i].dofs[d]) / nodes[i].volume();
           error = std::max(error, (f - f_exact).norm() / f_exact.norm());
         }
       error      = Utilities::MPI::max(error, comm);
