@@ -2,8 +2,8 @@
 // core in the uniform bulk, for the LPS (two passes, both counted) and the
 // bond-based model in 2D and 3D, on 1 and 2 threads, next to the memory
 // bandwidth of the machine measured in the same run (a STREAM-like triad),
-// and next to the apply() of the assembled-path operator
-// (LinearPeridynamicOperator, explicit bond data, Trilinos vectors).
+// and next to the apply() of the test oracle (Testing::ReferenceBondOperator
+// of tests/common: explicit bond data, Trilinos vectors).
 //
 //   perideal-bond-operator-throughput [--quick] [--output-dir DIR]
 //
@@ -30,8 +30,9 @@
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
 #include <perideal/operators/bond_operator.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
 #include <perideal/quadrature/exact_partial_volume.h>
+
+#include "tests/common/reference_bond_operator.h"
 
 #include <filesystem>
 #include <fstream>
@@ -155,7 +156,7 @@ namespace
 
     if (with_reference)
       {
-        Operators::LinearPeridynamicOperator<dim> reference;
+        Testing::ReferenceBondOperator<dim> reference;
         reference.reinit(nodes, lists, *model, horizon);
         TrilinosWrappers::MPI::Vector ut(reference.owned_dofs(),
                                          nodes.relevant_dofs(),

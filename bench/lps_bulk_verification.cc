@@ -32,9 +32,11 @@
 // constants 3K - 5 mu and 15 mu of the library are what is verified; the
 // analytical values use K and mu computed here from E and nu.
 //
-// Before the sweep, the force of the library's LinearPeridynamicOperator at
-// the centre node of a finite grid (m = 2, exact weights) is compared with
-// this program's sum, so that the sum verified here is the library's.
+// The force is the bond sum of the test oracle (tests/common,
+// Testing::reference_force_density()) on the infinite grid. Before the
+// sweep, the force of the library's BondOperator at the centre node of a
+// finite grid (m = 2, exact weights) is compared with this sum, so that the
+// sum verified here is the library's.
 //
 // With --quick (m = 1, 1.25, ..., 2) the program is a smoke test that fails
 // (exit code 1) unless, for exact weights, err_volume <= 1e-13 at every m and
@@ -56,10 +58,11 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
-#include <perideal/operators/bond/bond_kernel.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
+#include <perideal/operators/bond_operator.h>
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
+
+#include "tests/common/reference_bond_operator.h"
 
 #include <algorithm>
 #include <array>
@@ -285,13 +288,14 @@ namespace
   };
 
   /**
-   * The quantities of one row. The discrete LPS force of Eq. (20) is formed
-   * as LinearPeridynamicOperator::apply() does,
+   * The quantities of one row. The discrete LPS force of Eq. (20) is the
+   * test oracle's bond sum (Testing::reference_force_density()),
    * \f$f_i = \sum_j [a_i(r)\theta_i + a_j(r)\theta_j + (b_i(r) + b_j(r))
    * e_{ij}]\, n_{ij}\, \beta_{ij} V\f$, with each dilatation
    * \f$\theta_k = (3/m_k)\sum_l \omega r e_{kl} \beta_{kl} V\f$ summed over
-   * node k's own lattice neighbourhood; on the infinite grid every node has
-   * the same beta table and \f$m_j = m_i\f$.
+   * node k's own lattice neighbourhood (Testing::reference_dilatation()); on
+   * the infinite grid every node has the same beta table and
+   * \f$m_j = m_i\f$, so one list of bonds serves every node.
    */
   struct BulkNode
   {
@@ -384,50 +388,51 @@ namespace
             u[index(x, y, z)] =
               field.value(Tensor<1, 3>({double(x), double(y), double(z)}));
 
-      std::vector<double>    theta_factor(bonds.size());
-      std::vector<long long> stride(bonds.size());
+      // One oracle bond per table entry; its handle is the entry's number,
+      // which the look-ups below turn into a stride in u.
+      std::vector<Testing::ReferenceBond<3>> reference_bonds;
+      std::vector<long long>                 stride(bonds.size());
       for (std::size_t k = 0; k < bonds.size(); ++k)
         {
           const Bond &b = bonds[k];
-          theta_factor[k] =
-            3. / mj * model.influence(b.r, m_ratio) * b.r * b.beta;
+          reference_bonds.push_back(Testing::make_reference_bond<3>(model,
+                                                                    m_ratio,
+                                                                    k,
+                                                                    b.xi,
+                                                                    b.beta,
+                                                                    mi,
+                                                                    true,
+                                                                    mj));
           stride[k] =
             (long long)(index(b.offset[0], b.offset[1], b.offset[2])) -
             (long long)(index(0, 0, 0));
         }
       auto dilatation = [&](const std::size_t node) {
-        const Tensor<1, 3> &u_node = u[node];
-        double              theta  = 0;
-        for (std::size_t k = 0; k < bonds.size(); ++k)
-          theta += theta_factor[k] * Operators::BondKernel::linear_extension<3>(
-                                       bonds[k].n,
-                                       u[node + stride[k]] - u_node);
-        return theta;
+        return Testing::reference_dilatation<3>(
+          reference_bonds,
+          u[node],
+          [&](const Testing::ReferenceBond<3> &b) {
+            return u[node + stride[b.neighbor]];
+          });
       };
 
-      const std::size_t origin  = index(0, 0, 0);
-      const double      theta_i = dilatation(origin);
-      Tensor<1, 3>      f;
-      for (std::size_t j = 0; j < bonds.size(); ++j)
-        {
-          const Bond       &b       = bonds[j];
-          const std::size_t node_j  = origin + stride[j];
-          const double      theta_j = dilatation(node_j);
-          const double      e =
-            Operators::BondKernel::linear_extension<3>(b.n,
-                                                       u[node_j] - u[origin]);
-          const double a_i   = model.dilatation_coefficient(mi, b.r, m_ratio);
-          const double a_j   = model.dilatation_coefficient(mj, b.r, m_ratio);
-          const double b_sum = model.extension_coefficient(mi, b.r, m_ratio) +
-                               model.extension_coefficient(mj, b.r, m_ratio);
-          f += (a_i * theta_i + a_j * theta_j + b_sum * e) * b.beta * b.n;
-        }
+      const std::size_t  origin = index(0, 0, 0);
+      const Tensor<1, 3> f      = Testing::reference_force_density<3>(
+        reference_bonds,
+        u[origin],
+        dilatation(origin),
+        [&](const Testing::ReferenceBond<3> &b) {
+          return u[origin + stride[b.neighbor]];
+        },
+        [&](const Testing::ReferenceBond<3> &b) {
+          return dilatation(origin + stride[b.neighbor]);
+        });
       return f;
     }
   };
 
   /**
-   * The library's LinearPeridynamicOperator on a finite grid of unit cubes
+   * The library's BondOperator on a finite grid of unit cubes
    * (exact weights, horizon @p m_ratio): the nodal force (V = 1, so the
    * force density) at the centre node, for @p field centred there. The grid
    * is wide enough that the centre node and all its neighbours' neighbours
@@ -455,30 +460,29 @@ namespace
     Discretization::NeighborList<3> lists;
     const auto exact = PartialVolumeRegistry<3>::create("exact");
     lists.reinit(nodes, m_ratio, *exact, model.is_state_based());
-    Operators::LinearPeridynamicOperator<3> op;
+    Operators::BondOperator<3> op;
     op.reinit(nodes, lists, model, m_ratio);
 
-    const Point<3>                centre(half + 0.5, half + 0.5, half + 0.5);
-    const IndexSet               &owned = op.owned_dofs();
-    TrilinosWrappers::MPI::Vector u(owned, nodes.relevant_dofs(), comm),
-      u_owned(owned, comm), force(owned, comm);
+    const Point<3> centre(half + 0.5, half + 0.5, half + 0.5);
+    Operators::BondOperator<3>::VectorType u, force;
+    op.initialize_dof_vector(u);
+    op.initialize_dof_vector(force);
     unsigned int centre_node = numbers::invalid_unsigned_int;
     for (unsigned int i = 0; i < nodes.n_owned(); ++i)
       {
         const Tensor<1, 3> value = field.value(nodes[i].location - centre);
         for (unsigned int c = 0; c < 3; ++c)
-          u_owned[nodes[i].dofs[c]] = value[c];
+          u(nodes[i].dofs[c]) = value[c];
         if (nodes[i].location.distance(centre) < 1e-9)
           centre_node = i;
       }
-    u_owned.compress(VectorOperation::insert);
-    u = u_owned;
+    u.update_ghost_values();
     AssertThrow(centre_node != numbers::invalid_unsigned_int,
                 ExcMessage("no node at the centre of the grid"));
     op.apply(u, force);
     Tensor<1, 3> f;
     for (unsigned int c = 0; c < 3; ++c)
-      f[c] = force[nodes[centre_node].dofs[c]] / nodes[centre_node].volume();
+      f[c] = force(nodes[centre_node].dofs[c]) / nodes[centre_node].volume();
     return f;
   }
 
@@ -584,7 +588,7 @@ main(int argc, char **argv)
         const Tensor<1, 3> f_library = library_operator_force(*model, field, m);
         const double       difference =
           (f_here - f_library).norm() / f_library.norm();
-        std::printf("LinearPeridynamicOperator at m = %g (exact weights, "
+        std::printf("BondOperator at m = %g (exact weights, "
                     "finite grid): |f - f_library| / |f_library| = %.2e\n",
                     m,
                     difference);

@@ -7,8 +7,8 @@
 //   f(x) = int_H n [alpha(r) s (theta(x) + theta(x')) + 2 beta(r) s e] dV',
 //   theta(x) = (d/m) int_H omega(r) r e dV',   m = int_H omega r^2 dV,
 // e = n . (u(x') - u(x)), with the model's kernel alpha, beta, s (exactly as
-// BondOperator and LinearPeridynamicOperator use it), must equal the
-// classical div sigma(u) = mu Lap u + (lambda + mu) grad div u, with lambda
+// BondOperator and the test oracle ReferenceBondOperator use it), must equal
+// the classical div sigma(u) = mu Lap u + (lambda + mu) grad div u, with lambda
 // and mu computed here from E and nu (plane strain, plane stress or 3D).
 // That holds exactly only if the micromoduli constants of the model are
 // right. The integrals are evaluated by a brute-force tensor product

@@ -1,6 +1,7 @@
-// The matrix-free BondOperator against the assembled stiffness of
-// LinearPeridynamicOperator (an independent implementation: explicit bond
-// lists, row-by-row assembly into a Trilinos matrix), for the LPS and the
+// The matrix-free BondOperator against the assembled stiffness of the test
+// oracle Testing::ReferenceBondOperator (tests/common; an independent
+// implementation: explicit bond lists, row-by-row assembly into a Trilinos
+// matrix), for the LPS and the
 // bond-based model in 2D and 3D, on uniform grids (shared stencil in the
 // bulk, lists at the boundary) and on locally refined meshes (lists only):
 //  - K u = -F(u) for a smooth non-linear field, to 1e-12 relative;
@@ -34,8 +35,9 @@
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
 #include <perideal/operators/bond_operator.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
 #include <perideal/quadrature/exact_partial_volume.h>
+
+#include "tests/common/reference_bond_operator.h"
 
 #include <iomanip>
 #include <iostream>
@@ -85,7 +87,7 @@ check(const std::string &name,
   stored.reinit(nodes, horizon, exact, model->is_state_based(), true);
   compact.reinit(nodes, horizon, exact, model->is_state_based(), false);
 
-  Operators::LinearPeridynamicOperator<dim> reference;
+  Testing::ReferenceBondOperator<dim> reference;
   reference.reinit(nodes, stored, *model, horizon);
   TrilinosWrappers::SparseMatrix matrix;
   reference.assemble(matrix);

@@ -1,8 +1,11 @@
 // Kind of test: closed-form property (patch test: linear fields give zero
 // force in the bulk, on a bulk set that is checked to be non-empty) and
 // comparison of two evaluations (matrix against matrix-free).
-// The linearised PD operator on a distributed mesh, for the LPS and the
-// bond-based model, 2D and 3D:
+// The test oracle of the linearised PD operator
+// (Testing::ReferenceBondOperator, tests/common) checked on its own, on a
+// distributed mesh, for the LPS and the bond-based model, 2D and 3D, so that
+// tests/operators/bond_operator.cc compares the library against an operator
+// that is right:
 //  - patch test: a linear displacement field gives zero force at every bulk
 //    node (farther than two horizons from the boundary) to round-off, with
 //    exact partial volumes;
@@ -26,8 +29,9 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
 #include <perideal/quadrature/exact_partial_volume.h>
+
+#include "tests/common/reference_bond_operator.h"
 
 #include <iomanip>
 #include <iostream>
@@ -75,7 +79,7 @@ check(const std::string               &model_name,
                horizon,
                PeriDEAL::Quadrature::ExactPartialVolume<dim>(),
                model->is_state_based());
-  Operators::LinearPeridynamicOperator<dim> op;
+  Testing::ReferenceBondOperator<dim> op;
   op.reinit(nodes, lists, *model, horizon);
 
   const IndexSet               &owned    = op.owned_dofs();

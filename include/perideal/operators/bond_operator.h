@@ -50,9 +50,9 @@ namespace PeriDEAL
      * \f]
      * with \f$e_{ij} = n_{ij}\cdot(u_j - u_i)\f$, the model's kernel
      * \f$\alpha, \beta, s\f$ (Models::Model::dilatation_constant()) and the
-     * reference weighted volume \f$m_i\f$ (all bonds, broken or not). This is
-     * the same operator as LinearPeridynamicOperator; broken bonds
-     * (Discretization::BondState) leave the sums.
+     * reference weighted volume \f$m_i\f$ (all bonds, broken or not). The
+     * test oracle of tests/common evaluates the same operator bond by bond;
+     * broken bonds (Discretization::BondState) leave the sums.
      *
      * <h3>Data layout</h3>
      * Values are copied from the deal.II vector into structure-of-arrays

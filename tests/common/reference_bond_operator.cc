@@ -2,18 +2,46 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
-#include <perideal/operators/bond/bond_kernel.h>
-#include <perideal/operators/linear_peridynamic_operator.h>
-
 #include <algorithm>
+
+#include "reference_bond_operator.h"
 
 namespace PeriDEAL
 {
-  namespace Operators
+  namespace Testing
   {
     template <int dim>
+    ReferenceBond<dim>
+    make_reference_bond(const Models::Model<dim> &model,
+                        const double              horizon,
+                        const unsigned int        neighbor,
+                        const Tensor<1, dim>     &xi,
+                        const double              weight,
+                        const double              m_i,
+                        const bool                j_listed,
+                        const double              m_j)
+    {
+      const bool         state_based = model.is_state_based();
+      const double       r           = xi.norm();
+      ReferenceBond<dim> bond;
+      bond.neighbor = neighbor;
+      bond.n        = xi / r;
+      bond.weight   = weight;
+      bond.theta_factor =
+        state_based ? dim / m_i * model.influence(r, horizon) * r * weight : 0.;
+      bond.a_i = model.dilatation_coefficient(m_i, r, horizon);
+      bond.a_j = j_listed ? model.dilatation_coefficient(m_j, r, horizon) : 0.;
+      bond.b_sum = model.extension_coefficient(m_i, r, horizon) +
+                   (j_listed || !state_based ?
+                      model.extension_coefficient(m_j, r, horizon) :
+                      0.);
+      return bond;
+    }
+
+
+    template <int dim>
     void
-    LinearPeridynamicOperator<dim>::reinit(
+    ReferenceBondOperator<dim>::reinit(
       const Discretization::NodeSet<dim>      &node_set,
       const Discretization::NeighborList<dim> &lists,
       const Models::Model<dim>                &model,
@@ -57,27 +85,16 @@ namespace PeriDEAL
           if (listed[i])
             for (const auto &bond : lists.bonds(i))
               {
-                const unsigned int   j = bond.neighbor;
-                const Tensor<1, dim> xi =
-                  node_set[j].location - node_set[i].location;
-                const double r = xi.norm();
-                BondData     data;
-                data.neighbor = j;
-                data.n        = xi / r;
-                data.weight   = bond.weight;
-                data.theta_factor =
-                  state_based ?
-                    dim / m[i] * model.influence(r, horizon) * r * bond.weight :
-                    0.;
-                data.a_i   = model.dilatation_coefficient(m[i], r, horizon);
-                data.a_j   = listed[j] ?
-                               model.dilatation_coefficient(m[j], r, horizon) :
-                               0.;
-                data.b_sum = model.extension_coefficient(m[i], r, horizon) +
-                             (listed[j] || !state_based ?
-                                model.extension_coefficient(m[j], r, horizon) :
-                                0.);
-                bonds.push_back(data);
+                const unsigned int j = bond.neighbor;
+                bonds.push_back(make_reference_bond<dim>(model,
+                                                         horizon,
+                                                         j,
+                                                         node_set[j].location -
+                                                           node_set[i].location,
+                                                         bond.weight,
+                                                         m[i],
+                                                         listed[j],
+                                                         m[j]));
               }
           offsets[i + 1] = bonds.size();
         }
@@ -97,8 +114,8 @@ namespace PeriDEAL
     template <int dim>
     template <typename Function>
     void
-    LinearPeridynamicOperator<dim>::for_each_bond(const unsigned int i,
-                                                  const Function    &f) const
+    ReferenceBondOperator<dim>::for_each_bond(const unsigned int i,
+                                              const Function    &f) const
     {
       for (std::size_t b = offsets[i]; b < offsets[i + 1]; ++b)
         f(bonds[b]);
@@ -106,8 +123,16 @@ namespace PeriDEAL
 
 
     template <int dim>
+    typename ReferenceBondOperator<dim>::BondRange
+    ReferenceBondOperator<dim>::bonds_of(const unsigned int i) const
+    {
+      return {bonds.data() + offsets[i], bonds.data() + offsets[i + 1]};
+    }
+
+
+    template <int dim>
     const std::vector<double> &
-    LinearPeridynamicOperator<dim>::weighted_volumes() const
+    ReferenceBondOperator<dim>::weighted_volumes() const
     {
       return m;
     }
@@ -115,7 +140,7 @@ namespace PeriDEAL
 
     template <int dim>
     const IndexSet &
-    LinearPeridynamicOperator<dim>::owned_dofs() const
+    ReferenceBondOperator<dim>::owned_dofs() const
     {
       return owned;
     }
@@ -123,7 +148,7 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LinearPeridynamicOperator<dim>::compute_dilatation(
+    ReferenceBondOperator<dim>::compute_dilatation(
       const TrilinosWrappers::MPI::Vector &displacement,
       std::vector<double>                 &dilatation) const
     {
@@ -137,25 +162,16 @@ namespace PeriDEAL
           value[c] = displacement[node_set[k].dofs[c]];
         return value;
       };
+      const auto u_far = [&](const BondData &bond) { return u(bond.neighbor); };
       for (unsigned int i = 0; i < node_set.size(); ++i)
         if (listed[i])
-          {
-            const Tensor<1, dim> u_i   = u(i);
-            double               theta = 0;
-            for_each_bond(i, [&](const BondData &bond) {
-              theta +=
-                bond.theta_factor *
-                BondKernel::linear_extension<dim>(bond.n,
-                                                  u(bond.neighbor) - u_i);
-            });
-            dilatation[i] = theta;
-          }
+          dilatation[i] = reference_dilatation<dim>(bonds_of(i), u(i), u_far);
     }
 
 
     template <int dim>
     void
-    LinearPeridynamicOperator<dim>::apply(
+    ReferenceBondOperator<dim>::apply(
       const TrilinosWrappers::MPI::Vector &displacement,
       TrilinosWrappers::MPI::Vector       &nodal_force) const
     {
@@ -168,17 +184,17 @@ namespace PeriDEAL
           value[c] = displacement[node_set[k].dofs[c]];
         return value;
       };
+      const auto u_far = [&](const BondData &bond) { return u(bond.neighbor); };
+      const auto theta_far = [&](const BondData &bond) {
+        return theta[bond.neighbor];
+      };
       for (unsigned int i = 0; i < node_set.n_owned(); ++i)
         {
-          const Tensor<1, dim> u_i = u(i);
-          Tensor<1, dim>       f;
-          for_each_bond(i, [&](const BondData &bond) {
-            const double e =
-              BondKernel::linear_extension<dim>(bond.n, u(bond.neighbor) - u_i);
-            f += (bond.a_i * theta[i] + bond.a_j * theta[bond.neighbor] +
-                  bond.b_sum * e) *
-                 bond.weight * bond.n;
-          });
+          Tensor<1, dim> f = reference_force_density<dim>(bonds_of(i),
+                                                          u(i),
+                                                          theta[i],
+                                                          u_far,
+                                                          theta_far);
           f *= node_set[i].volume();
           for (unsigned int c = 0; c < dim; ++c)
             nodal_force[node_set[i].dofs[c]] = f[c];
@@ -189,7 +205,7 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LinearPeridynamicOperator<dim>::assemble_with(
+    ReferenceBondOperator<dim>::assemble_with(
       TrilinosWrappers::SparseMatrix  &matrix,
       const AffineConstraints<double> *constraints,
       TrilinosWrappers::MPI::Vector   *rhs) const
@@ -399,7 +415,7 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LinearPeridynamicOperator<dim>::assemble(
+    ReferenceBondOperator<dim>::assemble(
       TrilinosWrappers::SparseMatrix &matrix) const
     {
       assemble_with(matrix, nullptr, nullptr);
@@ -408,7 +424,7 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    LinearPeridynamicOperator<dim>::assemble(
+    ReferenceBondOperator<dim>::assemble(
       TrilinosWrappers::SparseMatrix  &matrix,
       const AffineConstraints<double> &constraints,
       TrilinosWrappers::MPI::Vector   &rhs) const
@@ -419,13 +435,31 @@ namespace PeriDEAL
 
     template <int dim>
     std::size_t
-    LinearPeridynamicOperator<dim>::n_owned_bonds() const
+    ReferenceBondOperator<dim>::n_owned_bonds() const
     {
       return offsets.empty() ? 0 : offsets[nodes->n_owned()];
     }
 
 
-    template class LinearPeridynamicOperator<2>;
-    template class LinearPeridynamicOperator<3>;
-  } // namespace Operators
+    template ReferenceBond<2>
+    make_reference_bond(const Models::Model<2> &,
+                        const double,
+                        const unsigned int,
+                        const Tensor<1, 2> &,
+                        const double,
+                        const double,
+                        const bool,
+                        const double);
+    template ReferenceBond<3>
+    make_reference_bond(const Models::Model<3> &,
+                        const double,
+                        const unsigned int,
+                        const Tensor<1, 3> &,
+                        const double,
+                        const double,
+                        const bool,
+                        const double);
+    template class ReferenceBondOperator<2>;
+    template class ReferenceBondOperator<3>;
+  } // namespace Testing
 } // namespace PeriDEAL
