@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <perideal/boundary/taylor_extrapolation.h>
+#include <perideal/discretization/taylor_extrapolation.h>
 #include <perideal/discretization/lattice.h>
 #include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/fictitious_layer_operator.h>
@@ -407,7 +407,7 @@ namespace PeriDEAL
         };
         const Tensor<1, dim> t = scaled(target);
         std::vector<double>  w;
-        const unsigned int needed = Boundary::n_taylor_terms(dim, taylor_order);
+        const unsigned int needed = Discretization::n_taylor_terms(dim, taylor_order);
         std::size_t        end    = 0;
         while (end < candidates.size())
           {
@@ -416,7 +416,7 @@ namespace PeriDEAL
               points.push_back(scaled(candidates[end++].position));
             if (points.size() < needed)
               continue;
-            w = Boundary::taylor_extrapolation_weights<dim>(points,
+            w = Discretization::taylor_extrapolation_weights<dim>(points,
                                                             t,
                                                             taylor_order);
             if (!w.empty())
