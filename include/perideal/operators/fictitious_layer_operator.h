@@ -11,6 +11,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/discretization/node_set.h>
+#include <perideal/discretization/surface_nodes.h>
 #include <perideal/models/model.h>
 #include <perideal/quadrature/partial_volume.h>
 
@@ -25,6 +26,12 @@ namespace PeriDEAL
   namespace Operators
   {
     using namespace dealii;
+
+    namespace FictitiousLayer
+    {
+      template <int dim>
+      struct LayerData;
+    }
 
     /**
      * The linearised state-based peridynamic system with a fictitious layer
@@ -48,7 +55,7 @@ namespace PeriDEAL
      * A fictitious node f takes \f$\mathbf u_f = \sum_q w_q \mathbf u_q\f$,
      * a Taylor expansion of order N about its nearest surface node (nearest
      * body node without surface nodes), its derivatives fitted over the
-     * nearest shells of surface and body nodes (Boundary::
+     * nearest shells of surface and body nodes (Discretization::
      * taylor_extrapolation_weights), and \f$\theta_f\f$ likewise with order
      * N-1 from body nodes about its nearest body node. Every fictitious and
      * body node has the bulk weighted volume \f$m_0\f$. Ties between
@@ -75,38 +82,30 @@ namespace PeriDEAL
      * parallel, so off-process rows are fetched by Trilinos and the result
      * does not depend on the partition beyond round-off. The matrix is not
      * symmetric.
+     *
+     * <h3>Parts</h3>
+     * The set-up is in fictitious_layer_operator.cc; the rows of the factors
+     * are built by the functions of namespace FictitiousLayer
+     * (operators/fictitious_layer/: extrapolation rows of E and X, body
+     * rows of D, A, B, surface flux rows of A, B), the products, the
+     * elimination and apply() in fictitious_layer_operator_assembly.cc.
      */
     template <int dim>
     class FictitiousLayerOperator
     {
     public:
       /// A node on an external cell face.
-      struct SurfaceNode
-      {
-        Point<dim>              location;
-        unsigned int            axis;
-        int                     side; // +1: outward normal +e_axis
-        types::boundary_id      boundary_id;
-        double                  area;
-        types::global_dof_index first_unknown;
-
-        Tensor<1, dim>
-        normal() const
-        {
-          Tensor<1, dim> n;
-          n[axis] = side;
-          return n;
-        }
-      };
+      using SurfaceNode = Discretization::SurfaceNode<dim>;
 
       FictitiousLayerOperator();
       ~FictitiousLayerOperator();
 
       /**
-       * Build the layer, the surface nodes and the extrapolation for the
-       * body discretised by @p nodes (built with a coupling range of at least
-       * twice the horizon plus two cell diameters). Throws a clear error if
-       * the grid is not uniform.
+       * Build the layer (Discretization::ExtendedLattice), the surface nodes
+       * if @p with_surface_nodes (Discretization::SurfaceNodes) and the
+       * bond constants for the body discretised by @p nodes (built with a
+       * coupling range of at least twice the horizon plus two cell
+       * diameters). Throws a clear error if the grid is not uniform.
        */
       void
       reinit(const DoFHandler<dim>                &dof_handler,
@@ -179,8 +178,7 @@ namespace PeriDEAL
       build_factors() const;
 
     private:
-      struct Impl;
-      std::unique_ptr<Impl> impl;
+      std::unique_ptr<FictitiousLayer::LayerData<dim>> data;
     };
   } // namespace Operators
 } // namespace PeriDEAL

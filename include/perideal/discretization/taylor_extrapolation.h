@@ -1,5 +1,5 @@
-#ifndef perideal_boundary_taylor_extrapolation_h
-#define perideal_boundary_taylor_extrapolation_h
+#ifndef perideal_discretization_taylor_extrapolation_h
+#define perideal_discretization_taylor_extrapolation_h
 
 #include <deal.II/base/tensor.h>
 
@@ -7,7 +7,7 @@
 
 namespace PeriDEAL
 {
-  namespace Boundary
+  namespace Discretization
   {
     using namespace dealii;
 
@@ -38,7 +38,7 @@ namespace PeriDEAL
     taylor_extrapolation_weights(const std::vector<Tensor<1, dim>> &stencil,
                                  const Tensor<1, dim>              &target,
                                  const unsigned int                 order);
-  } // namespace Boundary
+  } // namespace Discretization
 } // namespace PeriDEAL
 
 #endif

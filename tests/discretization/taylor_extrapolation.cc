@@ -1,11 +1,11 @@
-// Taylor extrapolation weights (Boundary::taylor_extrapolation_weights):
+// Taylor extrapolation weights (Discretization::taylor_extrapolation_weights):
 // exact for every monomial of degree <= N on stencils like those of the
 // surface node method (a surface node, the body nodes behind it and the
 // neighbouring surface nodes, in units of h), inexact for degree N + 1, and
 // empty for stencils that do not determine all derivatives. The reference
 // values are the monomials themselves.
 
-#include <perideal/boundary/taylor_extrapolation.h>
+#include <perideal/discretization/taylor_extrapolation.h>
 
 #include <cmath>
 #include <iomanip>
@@ -13,7 +13,7 @@
 #include <vector>
 
 using namespace dealii;
-using namespace PeriDEAL::Boundary;
+using namespace PeriDEAL::Discretization;
 
 template <int dim>
 double

@@ -1,13 +1,13 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include <perideal/boundary/taylor_extrapolation.h>
+#include <perideal/discretization/taylor_extrapolation.h>
 
 #include <array>
 #include <cmath>
 
 namespace PeriDEAL
 {
-  namespace Boundary
+  namespace Discretization
   {
     namespace
     {
@@ -128,5 +128,5 @@ namespace PeriDEAL
     taylor_extrapolation_weights<3>(const std::vector<Tensor<1, 3>> &,
                                     const Tensor<1, 3> &,
                                     const unsigned int);
-  } // namespace Boundary
+  } // namespace Discretization
 } // namespace PeriDEAL
