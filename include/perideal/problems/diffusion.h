@@ -118,6 +118,14 @@ namespace PeriDEAL
         return false;
       }
 
+      /// 'diffusion/Model' selects a diffusion model.
+      std::vector<PluginSelection>
+      plugin_selections() const override
+      {
+        return {
+          {"diffusion", "Model", Models::DiffusionModelRegistry<dim>::names()}};
+      }
+
       /// Diffusion bonds couple over one horizon; mirror layers reach
       /// their mirror images up to two layer thicknesses away.
       bool
