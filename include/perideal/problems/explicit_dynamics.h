@@ -12,6 +12,7 @@
 #include <perideal/discretization/crack_geometry.h>
 #include <perideal/io/crack_tip_tracker.h>
 #include <perideal/operators/bond_operator.h>
+#include <perideal/problems/explicit_dynamics/velocity_verlet.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
@@ -132,7 +133,8 @@ namespace PeriDEAL
       void
       initialize(Simulator<dim> &simulator);
 
-      /// One velocity-Verlet step from time to time + dt.
+      /// One velocity-Verlet step (the integrator's) from time to
+      /// time + dt.
       void
       step(Simulator<dim> &simulator);
 
@@ -279,6 +281,8 @@ namespace PeriDEAL
       std::vector<unsigned int> probe_nodes;
 
       // State.
+      /// The time integrator (its step is dt, set when the loop starts).
+      VelocityVerlet                 integrator;
       Discretization::BondState<dim> bond_state;
       Operators::BondOperator<dim>   bond_operator;
       AffineConstraints<double>      constraints;
