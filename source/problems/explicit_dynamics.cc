@@ -32,7 +32,7 @@ namespace PeriDEAL
         {
           read_checkpoint(simulator);
           for (const auto &row : energy_rows)
-            energy_monitor.observe(row[2], row[3], row[4]);
+            energy_monitor.observe({row[2], row[3], row[4]});
         }
       else
         {

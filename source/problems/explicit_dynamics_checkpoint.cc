@@ -13,6 +13,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
 #include <perideal/problems/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics_internal.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,18 +28,19 @@ namespace PeriDEAL
     using internal::ExplicitDynamicsCheckpoint::ChecksumWriter;
     using internal::ExplicitDynamicsCheckpoint::magic;
     using internal::ExplicitDynamicsCheckpoint::magic_v2;
+    using internal::ExplicitDynamicsCheckpoint::Directories;
 
 
     template <int dim>
     void
     ExplicitDynamics<dim>::write_checkpoint(Simulator<dim> &simulator)
     {
-      namespace fs        = std::filesystem;
-      const MPI_Comm comm = simulator.get_communicator();
-      const auto     rank = Utilities::MPI::this_mpi_process(comm);
-      const fs::path base(simulator.get_output().directory());
-      const fs::path fresh = base / "checkpoint.new",
-                     good = base / "checkpoint", old = base / "checkpoint.old";
+      const Directories dirs(simulator.get_output().directory());
+      namespace fs         = std::filesystem;
+      const fs::path &base = dirs.base, &fresh = dirs.fresh,
+                     &good = dirs.good, &old = dirs.old;
+      const MPI_Comm  comm = simulator.get_communicator();
+      const auto      rank = Utilities::MPI::this_mpi_process(comm);
       const auto &keys = checkpoint_keys(simulator);
       {
         std::string error;
@@ -169,14 +171,14 @@ namespace PeriDEAL
         first = std::min<std::uint64_t>(first, energy_every_steps);
       if (first >= static_cast<std::uint64_t>(n_steps))
         return;
-      const double   first_time = first * dt;
-      const MPI_Comm comm       = simulator.get_communicator();
-      const fs::path base(simulator.get_output().directory());
-      std::string    error;
+      const double      first_time = first * dt;
+      const MPI_Comm    comm       = simulator.get_communicator();
+      const Directories dirs(simulator.get_output().directory());
+      std::string       error;
       if (Utilities::MPI::this_mpi_process(comm) == 0)
-        for (const char *name : {"checkpoint", "checkpoint.old"})
+        for (const fs::path &dir : {dirs.good, dirs.old})
           {
-            const fs::path  path = base / name / "run.bin";
+            const fs::path  path = dir / "run.bin";
             std::error_code code;
             if (!fs::exists(path, code))
               continue;
@@ -219,13 +221,9 @@ namespace PeriDEAL
     }
 
 
-    template void
-    ExplicitDynamics<2>::write_checkpoint(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::write_checkpoint(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::check_checkpoint_overwrite(Simulator<2> &) const;
-    template void
-    ExplicitDynamics<3>::check_checkpoint_overwrite(Simulator<3> &) const;
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_checkpoint)
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void,
+                                           check_checkpoint_overwrite,
+                                           const)
   } // namespace Problems
 } // namespace PeriDEAL

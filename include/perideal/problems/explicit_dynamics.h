@@ -16,6 +16,7 @@
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
+#include <perideal/problems/time_stepping_problem.h>
 
 #include <array>
 #include <cstdint>
@@ -71,7 +72,7 @@ namespace PeriDEAL
      * Only the `none` boundary treatment is supported so far.
      */
     template <int dim>
-    class ExplicitDynamics : public ProblemType<dim>
+    class ExplicitDynamics : public TimeSteppingProblem<dim>
     {
     public:
       static void
@@ -79,9 +80,6 @@ namespace PeriDEAL
 
       void
       parse_parameters(ParameterHandler &prm) override;
-
-      void
-      check_input(const Simulator<dim> &simulator) const override;
 
       /**
        * The solution records and time series, the energy file, and the
@@ -111,11 +109,11 @@ namespace PeriDEAL
       double
       estimated_bytes_per_node(const double coupled) const override;
 
-      /// Time stepping needs no linear solve.
-      bool
-      uses_linear_solver() const override
+    protected:
+      std::string
+      label() const override
       {
-        return false;
+        return "explicit dynamics";
       }
 
     private:
