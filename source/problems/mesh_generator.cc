@@ -86,6 +86,8 @@ namespace PeriDEAL
       class SubdividedBox : public MeshGenerator<dim>
       {
       public:
+        /// 'Lower corner', 'Upper corner' (above the lower one in every
+        /// coordinate) and 'Subdivisions'.
         void
         parse_parameters(ParameterHandler &prm) override
         {
@@ -139,6 +141,8 @@ namespace PeriDEAL
       class MeshFile : public MeshGenerator<dim>
       {
       public:
+        /// 'Mesh file', which must name a readable file: refused before
+        /// anything is built otherwise.
         void
         parse_parameters(ParameterHandler &prm) override
         {

@@ -582,6 +582,5 @@ namespace PeriDEAL
     PERIDEAL_INSTANTIATE(1)
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)
-#undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

@@ -12,8 +12,8 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_checkpoint_format.h>
-#include <perideal/problems/explicit_dynamics_internal.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,14 +28,14 @@ namespace PeriDEAL
     using internal::ExplicitDynamicsCheckpoint::ChecksumWriter;
     using internal::ExplicitDynamicsCheckpoint::magic;
     using internal::ExplicitDynamicsCheckpoint::magic_v2;
-    using internal::ExplicitDynamicsCheckpoint::Directories;
 
 
     template <int dim>
     void
     ExplicitDynamics<dim>::write_checkpoint(Simulator<dim> &simulator)
     {
-      const Directories dirs(simulator.get_output().directory());
+      const internal::ExplicitDynamicsCheckpoint::Directories dirs(
+        simulator.get_output().directory());
       namespace fs         = std::filesystem;
       const fs::path &base = dirs.base, &fresh = dirs.fresh,
                      &good = dirs.good, &old = dirs.old;
@@ -171,10 +171,11 @@ namespace PeriDEAL
         first = std::min<std::uint64_t>(first, energy_every_steps);
       if (first >= static_cast<std::uint64_t>(n_steps))
         return;
-      const double      first_time = first * dt;
-      const MPI_Comm    comm       = simulator.get_communicator();
-      const Directories dirs(simulator.get_output().directory());
-      std::string       error;
+      const double   first_time = first * dt;
+      const MPI_Comm comm       = simulator.get_communicator();
+      const internal::ExplicitDynamicsCheckpoint::Directories dirs(
+        simulator.get_output().directory());
+      std::string error;
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         for (const fs::path &dir : {dirs.good, dirs.old})
           {

@@ -11,8 +11,8 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_checkpoint_format.h>
-#include <perideal/problems/explicit_dynamics_internal.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <algorithm>
 #include <array>

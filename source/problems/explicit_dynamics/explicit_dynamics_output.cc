@@ -10,7 +10,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_internal.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <cmath>
 #include <filesystem>

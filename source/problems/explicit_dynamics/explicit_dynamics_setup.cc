@@ -12,7 +12,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_internal.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <array>
 #include <cmath>
