@@ -46,8 +46,8 @@ namespace PeriDEAL
       const std::string problem_name = prm.get("Problem type");
       if (ProblemTypeRegistry<dim>::is_registered(problem_name))
         {
-          const auto problem = ProblemTypeRegistry<dim>::create(problem_name);
-          for (auto &selection : problem->plugin_selections())
+          const auto selected = ProblemTypeRegistry<dim>::create(problem_name);
+          for (auto &selection : selected->plugin_selections())
             selections.push_back(std::move(selection));
         }
       for (const auto &entry : entries)

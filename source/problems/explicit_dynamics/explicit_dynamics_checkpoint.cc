@@ -222,7 +222,7 @@ namespace PeriDEAL
     }
 
 
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_checkpoint)
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_checkpoint, )
     PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void,
                                            check_checkpoint_overwrite,
                                            const)

@@ -476,6 +476,6 @@ namespace PeriDEAL
     }
 
 
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, read_checkpoint)
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, read_checkpoint, )
   } // namespace Problems
 } // namespace PeriDEAL

@@ -237,9 +237,9 @@ namespace PeriDEAL
     }
 
 
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, record_energies)
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, print_progress_line)
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_output)
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, check_finite)
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, record_energies, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, print_progress_line, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_output, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, check_finite, )
   } // namespace Problems
 } // namespace PeriDEAL

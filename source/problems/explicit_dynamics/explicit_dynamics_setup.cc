@@ -374,8 +374,8 @@ namespace PeriDEAL
     }
 
 
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, setup)
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, choose_time_step)
-    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, initialize)
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, setup, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, choose_time_step, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, initialize, )
   } // namespace Problems
 } // namespace PeriDEAL

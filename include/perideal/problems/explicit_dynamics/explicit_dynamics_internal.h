@@ -36,11 +36,11 @@ namespace PeriDEAL
 
 /**
  * Instantiate the member function @p name of ExplicitDynamics that takes
- * the simulator and returns @p type, in 2D and 3D; the variadic argument is
- * the member's qualifier (`const`), if any.
+ * the simulator and returns @p type, in 2D and 3D; @p qualifier is the
+ * member's qualifier (`const`) or empty.
  */
-#define PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(type, name, ...)       \
-  template type ExplicitDynamics<2>::name(Simulator<2> &) __VA_ARGS__; \
-  template type ExplicitDynamics<3>::name(Simulator<3> &) __VA_ARGS__;
+#define PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(type, name, qualifier) \
+  template type ExplicitDynamics<2>::name(Simulator<2> &) qualifier; \
+  template type ExplicitDynamics<3>::name(Simulator<3> &) qualifier;
 
 #endif
