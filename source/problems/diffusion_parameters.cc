@@ -2,9 +2,9 @@
  * @file
  * The input of the diffusion problem type: its entries declared with their
  * patterns and help texts, read and checked (parse_parameters(); 'Time
- * stepping' into Diffusion::Stepping), the checks against the simulator's
- * entries (check_input()), and the entries that this run leaves unused
- * (unused_entries()).
+ * stepping' into Diffusion::Stepping), and the entries that this run leaves
+ * unused (unused_entries()); the checks against the simulator's entries are
+ * TimeSteppingProblem::check_input().
  */
 
 #include <perideal/base/exceptions.h>
@@ -336,24 +336,6 @@ namespace PeriDEAL
 
 
     template <int dim>
-    void
-    Diffusion<dim>::check_input(const Simulator<dim> &simulator) const
-    {
-      AssertThrow(simulator.get_boundary_treatment_name() == "none",
-                  ExcInvalidInput("Boundary treatment/Treatment",
-                                  simulator.get_boundary_treatment_name(),
-                                  "the diffusion problem supports the 'none' "
-                                  "treatment only so far"));
-      AssertThrow(simulator.get_node_data_file().empty(),
-                  ExcInvalidInput("Output/Node data file",
-                                  simulator.get_node_data_file(),
-                                  "the node data file is written by the "
-                                  "quasi-static problem only; leave it "
-                                  "empty"));
-    }
-
-
-    template <int dim>
     std::vector<UnusedEntry>
     Diffusion<dim>::unused_entries(const Simulator<dim> &) const
     {
@@ -431,7 +413,6 @@ namespace PeriDEAL
   template void        Diffusion<dim>::declare_parameters(ParameterHandler &); \
   template std::string Diffusion<dim>::stepping_name(const Stepping);          \
   template void        Diffusion<dim>::parse_parameters(ParameterHandler &);   \
-  template void Diffusion<dim>::check_input(const Simulator<dim> &) const;     \
   template std::vector<UnusedEntry> Diffusion<dim>::unused_entries(            \
     const Simulator<dim> &) const;
     PERIDEAL_INSTANTIATE(1)

@@ -29,6 +29,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<PluginSelection>
+    ProblemType<dim>::plugin_selections() const
+    {
+      return {};
+    }
+
+
+    template <int dim>
     std::string
     ProblemType<dim>::family_name()
     {

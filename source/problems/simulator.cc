@@ -97,17 +97,13 @@ namespace PeriDEAL
       }
       summary.n_bonds =
         Utilities::MPI::sum(neighbor_lists.n_owned_bonds(), communicator);
-      AssertThrow(
-        summary.n_bonds > 0,
-        ExcInvalidInput(horizon_specification == "m-ratio" ? "Horizon/m-ratio" :
-                                                             "Horizon/Length",
-                        format_number(horizon_specification == "m-ratio" ?
-                                        m_ratio :
-                                        horizon_length),
-                        "the horizon " + format_number(horizon) +
-                          " reaches no neighbour, so there is no "
-                          "bond; give an m-ratio above 0.5 (above 1 "
-                          "for full volumes), typically 3"));
+      AssertThrow(summary.n_bonds > 0,
+                  ExcInvalidInput(horizon_entry().first,
+                                  horizon_entry().second,
+                                  "the horizon " + format_number(horizon) +
+                                    " reaches no neighbour, so there is no "
+                                    "bond; give an m-ratio above 0.5 (above 1 "
+                                    "for full volumes), typically 3"));
       std::ostringstream line;
       line << "nodes: " << summary.n_nodes << " ("
            << Utilities::MPI::sum(nodes.n_ghost(), communicator)

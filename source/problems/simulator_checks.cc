@@ -13,7 +13,6 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
 #include <perideal/base/memory_guard.h>
-#include <perideal/models/diffusion_model.h>
 #include <perideal/problems/simulator.h>
 
 #include <algorithm>
@@ -30,13 +29,7 @@ namespace PeriDEAL
     {
       const std::vector<InputEntry> entries = scan_input_file(file);
 
-      struct Selection
-      {
-        std::string              section; // empty: top level
-        std::string              selector;
-        std::vector<std::string> names;
-      };
-      const std::vector<Selection> selections = {
+      std::vector<PluginSelection> selections = {
         {"Material model", "Model", Models::ModelRegistry<dim>::names()},
         {"Partial volumes",
          "Algorithm",
@@ -47,8 +40,16 @@ namespace PeriDEAL
         {"", "Problem type", ProblemTypeRegistry<dim>::names()},
         {"Linear solver",
          "Preconditioner",
-         Solvers::PreconditionerRegistry::names()},
-        {"diffusion", "Model", Models::DiffusionModelRegistry<dim>::names()}};
+         Solvers::PreconditionerRegistry::names()}};
+      // Those of the selected problem type come last: an entry of another
+      // problem type's plugin is refused by 'Problem type' first.
+      const std::string problem_name = prm.get("Problem type");
+      if (ProblemTypeRegistry<dim>::is_registered(problem_name))
+        {
+          const auto selected = ProblemTypeRegistry<dim>::create(problem_name);
+          for (auto &selection : selected->plugin_selections())
+            selections.push_back(std::move(selection));
+        }
       for (const auto &entry : entries)
         {
           AssertThrow(dim == 2 || entry.path.back() != "Plane model",
@@ -117,13 +118,13 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    Simulator<dim>::check_memory_estimate() const
+    Simulator<dim>::check_memory_estimate(
+      const typename MeshGenerator<dim>::CoarseSize &coarse) const
     {
-      // Nodes of the box before anything is allocated, as a double (a
+      // Nodes of the mesh before anything is allocated, as a double (a
       // careless input can overflow any integer).
-      double n_nodes = std::pow(2., dim * double(global_refinements));
-      for (const auto n : subdivisions)
-        n_nodes *= n;
+      const double n_nodes =
+        std::pow(2., dim * double(global_refinements)) * coarse.n_cells;
       // Bytes per node, measured (doc/matrix-free-operator.md): about 2 KB
       // for mesh, DoF handler, node set, constraints and vectors with the
       // matrix-free operator, plus 6 KB for the AMG hierarchy of the local
@@ -131,11 +132,9 @@ namespace PeriDEAL
       // dim times the nodes within the coupling range, 12 bytes an entry,
       // and a direct solver's factors several times that.
       const double m =
-        horizon_specification == "m-ratio" ?
+        horizon_specification == HorizonSpecification::m_ratio ?
           m_ratio :
-          horizon_length /
-            std::max(1e-300,
-                     (upper_corner[0] - lower_corner[0]) / subdivisions[0]);
+          horizon_length / std::max(1e-300, coarse.spacing);
       // Calibrated on the 28^3 LPS case (110 KB per node assembled, m = 3).
       const double reach   = couples_two_horizons() ? 2 * m : m;
       const double coupled = dim == 3 ? 4. / 3. * M_PI * reach * reach * reach :
@@ -167,8 +166,8 @@ namespace PeriDEAL
       AssertThrow(
         fits_in_memory(needed, available),
         ExcInvalidInput(
-          "Geometry/Subdivisions",
-          prm_subdivisions,
+          coarse.entry,
+          coarse.value,
           "with 'Global refinements = " + std::to_string(global_refinements) +
             "' this is " + format_number(n_nodes) +
             " nodes, which need an estimated " +
@@ -236,12 +235,8 @@ namespace PeriDEAL
     {
       using Kind = IO::OutputName::Kind;
       std::vector<IO::OutputName> names;
-      if (mesh_kind == "file")
-        names.push_back({"Geometry/Mesh file",
-                         mesh_file,
-                         mesh_file,
-                         Kind::input,
-                         "the mesh"});
+      for (auto &name : mesh_generator->input_names())
+        names.push_back(std::move(name));
       for (auto &name : problem->output_names(*this))
         names.push_back(std::move(name));
       if (!summary_file.empty())
@@ -261,38 +256,17 @@ namespace PeriDEAL
     }
 
 
-    template void
-    Simulator<1>::check_input_file(const std::string &file,
-                                   ParameterHandler  &prm);
-    template void
-    Simulator<2>::check_input_file(const std::string &file,
-                                   ParameterHandler  &prm);
-    template void
-    Simulator<3>::check_input_file(const std::string &file,
-                                   ParameterHandler  &prm);
-    template void
-    Simulator<1>::check_unused_entries(const ParameterHandler &prm) const;
-    template void
-    Simulator<2>::check_unused_entries(const ParameterHandler &prm) const;
-    template void
-    Simulator<3>::check_unused_entries(const ParameterHandler &prm) const;
-    template void
-    Simulator<1>::check_memory_estimate() const;
-    template void
-    Simulator<2>::check_memory_estimate() const;
-    template void
-    Simulator<3>::check_memory_estimate() const;
-    template void
-    Simulator<1>::check_material_scale() const;
-    template void
-    Simulator<2>::check_material_scale() const;
-    template void
-    Simulator<3>::check_material_scale() const;
-    template void
-    Simulator<1>::check_output_names() const;
-    template void
-    Simulator<2>::check_output_names() const;
-    template void
-    Simulator<3>::check_output_names() const;
+#define PERIDEAL_INSTANTIATE(dim)                                             \
+  template void Simulator<dim>::check_input_file(const std::string &,         \
+                                                 ParameterHandler &);         \
+  template void Simulator<dim>::check_unused_entries(const ParameterHandler &) \
+    const;                                                                    \
+  template void Simulator<dim>::check_memory_estimate(                        \
+    const MeshGenerator<dim>::CoarseSize &) const;                            \
+  template void Simulator<dim>::check_material_scale() const;                 \
+  template void Simulator<dim>::check_output_names() const;
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
   } // namespace Problems
 } // namespace PeriDEAL

@@ -1,15 +1,13 @@
 /**
  * @file
- * The mesh of a Simulator: a subdivided box (after the memory guard) or a
- * mesh file read with GridIn, globally refined; then the smallest cell side
+ * The mesh of a Simulator: the coarse mesh of the MeshGenerator chosen with
+ * 'Geometry/Mesh' (after the memory guard when its size is known), globally
+ * refined; then the smallest cell side
  * h, the extent of the body and the horizon.
  */
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
-
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_in.h>
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
@@ -28,51 +26,9 @@ namespace PeriDEAL
     Simulator<dim>::make_mesh()
     {
       TimerOutput::Scope scope(timer, "mesh");
-      if (mesh_kind == "subdivided box")
-        check_memory_estimate();
-      if (mesh_kind == "subdivided box")
-        GridGenerator::subdivided_hyper_rectangle(*triangulation,
-                                                  subdivisions,
-                                                  lower_corner,
-                                                  upper_corner,
-                                                  true);
-      else
-        {
-          // GridIn's own messages ("(none)", "No vertices given") name
-          // neither the file nor the entry; every process reads the file, so
-          // every process fails alike.
-          GridIn<dim> grid_in;
-          grid_in.attach_triangulation(*triangulation);
-          std::string error;
-          try
-            {
-              grid_in.read(mesh_file);
-              if (triangulation->n_global_active_cells() == 0)
-                error = "it holds no cells";
-            }
-          catch (const ExceptionBase &exc)
-            {
-              std::ostringstream info;
-              exc.print_info(info);
-              error = Utilities::trim(info.str());
-            }
-          catch (const std::exception &exc)
-            {
-              error = exc.what();
-            }
-          AssertThrow(
-            error.empty(),
-            ExcInvalidInput(
-              "Geometry/Mesh file",
-              mesh_file,
-              "reading it as a " + std::to_string(dim) + "D mesh failed (" +
-                (error.empty() ? "" : error) +
-                "); check that the extension names its format (.msh, .vtk, "
-                ".inp, .ucd, ...), that the file is complete, and that it "
-                "holds " +
-                std::to_string(dim) +
-                "D cells ('Dimension = " + std::to_string(dim) + "')"));
-        }
+      if (const auto coarse = mesh_generator->coarse_size())
+        check_memory_estimate(*coarse);
+      mesh_generator->create_coarse_mesh(*triangulation);
       triangulation->refine_global(global_refinements);
 
       // The smallest cell side and the extent of the body.
@@ -111,7 +67,7 @@ namespace PeriDEAL
                    Utilities::MPI::max(upper[d], communicator) -
                      Utilities::MPI::min(lower[d], communicator));
 
-      if (horizon_specification == "m-ratio")
+      if (horizon_specification == HorizonSpecification::m_ratio)
         horizon = m_ratio * h;
       else
         {
@@ -120,11 +76,8 @@ namespace PeriDEAL
         }
       AssertThrow(
         horizon < smallest_extent,
-        ExcInvalidInput(horizon_specification == "m-ratio" ? "Horizon/m-ratio" :
-                                                             "Horizon/Length",
-                        horizon_specification == "m-ratio" ?
-                          format_number(m_ratio) :
-                          format_number(horizon_length),
+        ExcInvalidInput(horizon_entry().first,
+                        horizon_entry().second,
                         "the horizon " + format_number(horizon) +
                           " is not smaller than the smallest extent of the "
                           "body, " +
@@ -144,11 +97,22 @@ namespace PeriDEAL
     }
 
 
-    template void
-    Simulator<1>::make_mesh();
-    template void
-    Simulator<2>::make_mesh();
-    template void
-    Simulator<3>::make_mesh();
+    template <int dim>
+    std::pair<std::string, std::string>
+    Simulator<dim>::horizon_entry() const
+    {
+      if (horizon_specification == HorizonSpecification::m_ratio)
+        return {"Horizon/m-ratio", format_number(m_ratio)};
+      return {"Horizon/Length", format_number(horizon_length)};
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)            \
+  template void Simulator<dim>::make_mesh(); \
+  template std::pair<std::string, std::string> Simulator<dim>::horizon_entry() \
+    const;
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
   } // namespace Problems
 } // namespace PeriDEAL

@@ -12,8 +12,6 @@
 #include <perideal/problems/simulator.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 namespace PeriDEAL
 {
@@ -21,18 +19,6 @@ namespace PeriDEAL
   {
     namespace
     {
-      template <int dim>
-      Point<dim>
-      parse_point(const std::string &text)
-      {
-        const auto values =
-          Utilities::string_to_double(Utilities::split_string_list(text));
-        Point<dim> p;
-        for (unsigned int d = 0; d < dim; ++d)
-          p[d] = values[d];
-        return p;
-      }
-
       std::string
       default_list(const int dim, const std::string &value)
       {
@@ -73,7 +59,7 @@ namespace PeriDEAL
         prm.declare_entry(
           "Mesh",
           "subdivided box",
-          Patterns::Selection("subdivided box|file"),
+          Patterns::Selection(mesh_generator_pattern<dim>("subdivided box")),
           "'subdivided box': the box between 'Lower corner' and 'Upper "
           "corner' with 'Subdivisions' cells per direction (boundary ids 0/1 "
           "on x = min/max, 2/3 on y, 4/5 on z). 'file': the mesh in 'Mesh "
@@ -235,44 +221,20 @@ namespace PeriDEAL
 
       prm.enter_subsection("Geometry");
       {
-        mesh_kind        = prm.get("Mesh");
-        prm_subdivisions = prm.get("Subdivisions");
-        lower_corner     = parse_point<dim>(prm.get("Lower corner"));
-        upper_corner     = parse_point<dim>(prm.get("Upper corner"));
-        subdivisions.clear();
-        for (const int n : Utilities::string_to_int(
-               Utilities::split_string_list(prm.get("Subdivisions"))))
-          subdivisions.push_back(n);
         global_refinements = prm.get_integer("Global refinements");
-        mesh_file          = prm.get("Mesh file");
-        if (mesh_kind == "subdivided box")
-          {
-            for (unsigned int d = 0; d < dim; ++d)
-              AssertThrow(upper_corner[d] > lower_corner[d],
-                          ExcInvalidInput("Geometry/Upper corner",
-                                          prm.get("Upper corner"),
-                                          "every coordinate of the upper "
-                                          "corner must exceed that of the "
-                                          "lower corner (" +
-                                            prm.get("Lower corner") + ")"));
-          }
-        else
-          AssertThrow(std::filesystem::is_regular_file(mesh_file) &&
-                        std::ifstream(mesh_file).good(),
-                      ExcInvalidInput("Geometry/Mesh file",
-                                      mesh_file,
-                                      "no readable file of this name; give "
-                                      "the path of an existing mesh, "
-                                      "relative to the working directory"));
+        mesh_generator = MeshGeneratorRegistry<dim>::create(prm.get("Mesh"));
+        mesh_generator->parse_parameters(prm);
       }
       prm.leave_subsection();
 
       prm.enter_subsection("Horizon");
       {
-        horizon_specification = prm.get("Specification");
-        m_ratio               = prm.get_double("m-ratio");
-        horizon_length        = prm.get_double("Length");
-        if (horizon_specification == "m-ratio")
+        horizon_specification = prm.get("Specification") == "m-ratio" ?
+                                  HorizonSpecification::m_ratio :
+                                  HorizonSpecification::length;
+        m_ratio        = prm.get_double("m-ratio");
+        horizon_length = prm.get_double("Length");
+        if (horizon_specification == HorizonSpecification::m_ratio)
           {
             AssertThrow(m_ratio > 0 && std::isfinite(m_ratio),
                         ExcInvalidInput("Horizon/m-ratio",
@@ -366,17 +328,11 @@ namespace PeriDEAL
     }
 
 
-    template void
-    Simulator<1>::declare_parameters(ParameterHandler &prm);
-    template void
-    Simulator<2>::declare_parameters(ParameterHandler &prm);
-    template void
-    Simulator<3>::declare_parameters(ParameterHandler &prm);
-    template void
-    Simulator<1>::parse_parameters(ParameterHandler &prm);
-    template void
-    Simulator<2>::parse_parameters(ParameterHandler &prm);
-    template void
-    Simulator<3>::parse_parameters(ParameterHandler &prm);
+#define PERIDEAL_INSTANTIATE(dim)                                          \
+  template void Simulator<dim>::declare_parameters(ParameterHandler &prm); \
+  template void Simulator<dim>::parse_parameters(ParameterHandler &prm);
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
   } // namespace Problems
 } // namespace PeriDEAL

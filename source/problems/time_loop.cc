@@ -13,6 +13,25 @@ namespace PeriDEAL
 {
   namespace Problems
   {
+    void
+    check_time_stepping_setup(const std::string &problem,
+                              const std::string &treatment,
+                              const std::string &node_data_file)
+    {
+      AssertThrow(treatment == "none",
+                  ExcInvalidInput("Boundary treatment/Treatment",
+                                  treatment,
+                                  problem + " supports the 'none' "
+                                            "treatment only so far"));
+      AssertThrow(node_data_file.empty(),
+                  ExcInvalidInput("Output/Node data file",
+                                  node_data_file,
+                                  "the node data file is written by the "
+                                  "quasi-static problem only; leave it "
+                                  "empty"));
+    }
+
+
     namespace
     {
       /// The text of ExcInvalidInput, for errors that travel as strings
@@ -458,11 +477,9 @@ namespace PeriDEAL
 
 
     void
-    EnergyBalanceMonitor::observe(const double kinetic,
-                                  const double elastic,
-                                  const double external_work,
-                                  const double verlet_term)
+    EnergyBalanceMonitor::observe(const Row &row)
     {
+      const auto &[kinetic, elastic, external_work, verlet_term] = row;
       const double balance = kinetic + elastic - external_work - verlet_term;
       lowest               = n_rows == 0 ? balance : std::min(lowest, balance);
       // The energy put in by the loads belongs to the scale: the run's
@@ -474,16 +491,14 @@ namespace PeriDEAL
 
 
     void
-    EnergyBalanceMonitor::check(const double              kinetic,
-                                const double              elastic,
-                                const double              external_work,
-                                const double              verlet_term,
+    EnergyBalanceMonitor::check(const Row                &row,
                                 const std::uint64_t       step,
                                 const double              time,
                                 const double              dt_bound,
                                 const MPI_Comm            comm,
                                 const ConditionalOStream &pcout)
     {
+      const auto &[kinetic, elastic, external_work, verlet_term] = row;
       const double balance = kinetic + elastic - external_work - verlet_term;
       const double energy =
         std::max({scale, kinetic + elastic, std::abs(external_work)});
@@ -494,7 +509,7 @@ namespace PeriDEAL
         Utilities::MPI::max(n_rows > 0 && rise > tolerance * energy ? 1 : 0,
                             comm) == 1;
       const double before = lowest;
-      observe(kinetic, elastic, external_work, verlet_term);
+      observe(row);
       if (!grew || (allow_growth && warned))
         return;
       std::ostringstream s;
@@ -554,35 +569,18 @@ namespace PeriDEAL
                    const std::string &,
                    const unsigned int,
                    FunctionEntry *);
-    template void
-    FiniteCheck::check_state(
-      const Discretization::NodeSet<1> &,
-      const std::vector<std::pair<const double *, std::size_t>> &,
-      const std::function<bool(unsigned int)> &,
-      const std::uint64_t,
-      const double,
-      const std::string &,
-      const std::string &,
-      const MPI_Comm);
-    template void
-    FiniteCheck::check_state(
-      const Discretization::NodeSet<2> &,
-      const std::vector<std::pair<const double *, std::size_t>> &,
-      const std::function<bool(unsigned int)> &,
-      const std::uint64_t,
-      const double,
-      const std::string &,
-      const std::string &,
-      const MPI_Comm);
-    template void
-    FiniteCheck::check_state(
-      const Discretization::NodeSet<3> &,
-      const std::vector<std::pair<const double *, std::size_t>> &,
-      const std::function<bool(unsigned int)> &,
-      const std::uint64_t,
-      const double,
-      const std::string &,
-      const std::string &,
-      const MPI_Comm);
+#define PERIDEAL_INSTANTIATE(dim)                                 \
+  template void FiniteCheck::check_state(                         \
+    const Discretization::NodeSet<dim> &,                         \
+    const std::vector<std::pair<const double *, std::size_t>> &,  \
+    const std::function<bool(unsigned int)> &,                    \
+    const std::uint64_t,                                          \
+    const double,                                                 \
+    const std::string &,                                          \
+    const std::string &,                                          \
+    const MPI_Comm);
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
   } // namespace Problems
 } // namespace PeriDEAL

@@ -14,6 +14,7 @@
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
+#include <perideal/problems/time_stepping_problem.h>
 #include <perideal/solvers/amg.h>
 
 #include <cstdint>
@@ -71,7 +72,7 @@ namespace PeriDEAL
      * diffusion_output.cc (history, progress line, PVTU and CSV).
      */
     template <int dim>
-    class Diffusion : public ProblemType<dim>
+    class Diffusion : public TimeSteppingProblem<dim>
     {
     public:
       static void
@@ -79,9 +80,6 @@ namespace PeriDEAL
 
       void
       parse_parameters(ParameterHandler &prm) override;
-
-      void
-      check_input(const Simulator<dim> &simulator) const override;
 
       /// The solution records and time series, and the history file.
       std::vector<IO::OutputName>
@@ -105,17 +103,19 @@ namespace PeriDEAL
       double
       estimated_bytes_per_node(const double coupled) const override;
 
-      bool
-      uses_linear_solver() const override
-      {
-        return false;
-      }
-
       /// The kernel is the diffusion subsection's, not a material model.
       bool
       uses_material_model() const override
       {
         return false;
+      }
+
+      /// 'diffusion/Model' selects a diffusion model.
+      std::vector<PluginSelection>
+      plugin_selections() const override
+      {
+        return {
+          {"diffusion", "Model", Models::DiffusionModelRegistry<dim>::names()}};
       }
 
       /// Diffusion bonds couple over one horizon; mirror layers reach
@@ -124,6 +124,13 @@ namespace PeriDEAL
       couples_two_horizons(const Models::Model<dim> *) const override
       {
         return layer_values == "mirror" || flux_values == "mirror";
+      }
+
+    protected:
+      std::string
+      label() const override
+      {
+        return "the diffusion problem";
       }
 
     private:

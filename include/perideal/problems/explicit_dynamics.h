@@ -12,9 +12,11 @@
 #include <perideal/discretization/crack_geometry.h>
 #include <perideal/io/crack_tip_tracker.h>
 #include <perideal/operators/bond_operator.h>
+#include <perideal/problems/explicit_dynamics/velocity_verlet.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
+#include <perideal/problems/time_stepping_problem.h>
 
 #include <array>
 #include <cstdint>
@@ -70,7 +72,7 @@ namespace PeriDEAL
      * Only the `none` boundary treatment is supported so far.
      */
     template <int dim>
-    class ExplicitDynamics : public ProblemType<dim>
+    class ExplicitDynamics : public TimeSteppingProblem<dim>
     {
     public:
       static void
@@ -78,9 +80,6 @@ namespace PeriDEAL
 
       void
       parse_parameters(ParameterHandler &prm) override;
-
-      void
-      check_input(const Simulator<dim> &simulator) const override;
 
       /**
        * The solution records and time series, the energy file, and the
@@ -110,11 +109,11 @@ namespace PeriDEAL
       double
       estimated_bytes_per_node(const double coupled) const override;
 
-      /// Time stepping needs no linear solve.
-      bool
-      uses_linear_solver() const override
+    protected:
+      std::string
+      label() const override
       {
-        return false;
+        return "explicit dynamics";
       }
 
     private:
@@ -132,7 +131,8 @@ namespace PeriDEAL
       void
       initialize(Simulator<dim> &simulator);
 
-      /// One velocity-Verlet step from time to time + dt.
+      /// One velocity-Verlet step (the integrator's) from time to
+      /// time + dt.
       void
       step(Simulator<dim> &simulator);
 
@@ -279,6 +279,8 @@ namespace PeriDEAL
       std::vector<unsigned int> probe_nodes;
 
       // State.
+      /// The time integrator (its step is dt, set when the loop starts).
+      VelocityVerlet                 integrator;
       Discretization::BondState<dim> bond_state;
       Operators::BondOperator<dim>   bond_operator;
       AffineConstraints<double>      constraints;

@@ -29,6 +29,23 @@ namespace PeriDEAL
     class Simulator;
 
     /**
+     * An entry that selects one plugin of a registry whose plugins keep
+     * their entries in subsections named after them (as 'Material
+     * model/Model' and 'Material model/<model>/...'), for the check that
+     * the input sets no entry of a plugin it does not select
+     * (Simulator::check_input_file()).
+     */
+    struct PluginSelection
+    {
+      /// The subsection of the selecting entry; empty: the top level.
+      std::string section;
+      /// The selecting entry, inside @p section.
+      std::string selector;
+      /// The registered names it selects among.
+      std::vector<std::string> names;
+    };
+
+    /**
      * What a run does once the shared set-up (mesh, PD nodes, model,
      * boundary conditions and treatment, output settings) is in place: a
      * quasi-static solve, a time loop, a diffusion problem. Each problem type
@@ -114,6 +131,15 @@ namespace PeriDEAL
        */
       virtual bool
       couples_two_horizons(const Models::Model<dim> *model) const;
+
+      /**
+       * The plugin selections in the problem type's own entries (e.g.
+       * 'diffusion/Model'), which Simulator::check_input_file() checks
+       * besides the simulator's own. Called on an object created with
+       * default parameters. Default: none.
+       */
+      virtual std::vector<PluginSelection>
+      plugin_selections() const;
 
       static std::string
       family_name();

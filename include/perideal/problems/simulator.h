@@ -20,6 +20,7 @@
 #include <perideal/io/run_summary.h>
 #include <perideal/io/solution_output.h>
 #include <perideal/models/model.h>
+#include <perideal/problems/mesh_generator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/solvers/linear_solver.h>
@@ -205,12 +206,18 @@ namespace PeriDEAL
 
     private:
       /**
-       * Estimate the memory of a box mesh's run before anything is
-       * allocated, and refuse it with the estimate when it exceeds what the
-       * machines have.
+       * Estimate the memory of a run on a mesh of known size @p coarse
+       * (before global refinement) before anything is allocated, and refuse
+       * it with the estimate when it exceeds what the machines have.
        */
       void
-      check_memory_estimate() const;
+      check_memory_estimate(
+        const typename MeshGenerator<dim>::CoarseSize &coarse) const;
+
+      /// The entry that gives the horizon ('Horizon/m-ratio' or
+      /// 'Horizon/Length') and its value, for messages.
+      std::pair<std::string, std::string>
+      horizon_entry() const;
 
       /// Whether owned nodes couple to nodes two horizons away (the
       /// problem type's answer for this run's material model, if any).
@@ -258,13 +265,17 @@ namespace PeriDEAL
 
       // Input.
       std::string               problem_name;
-      std::string               mesh_kind;
-      Point<dim>                lower_corner, upper_corner;
-      std::vector<unsigned int> subdivisions;
-      std::string               prm_subdivisions;
-      unsigned int              global_refinements = 0;
-      std::string               mesh_file;
-      std::string               horizon_specification;
+      /// The coarse mesh ('Geometry/Mesh').
+      std::unique_ptr<MeshGenerator<dim>> mesh_generator;
+      unsigned int                        global_refinements = 0;
+      /// 'Horizon/Specification', parsed once.
+      enum class HorizonSpecification
+      {
+        m_ratio,
+        length
+      };
+      HorizonSpecification      horizon_specification =
+        HorizonSpecification::m_ratio;
       double                    m_ratio        = 3;
       double                    horizon_length = 0;
       std::string               algorithm_name, model_name;

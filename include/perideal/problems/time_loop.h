@@ -197,6 +197,19 @@ namespace PeriDEAL
 
 
     /**
+     * Refuse what the time-stepping problem types do not support yet: a
+     * 'Boundary treatment/Treatment' @p treatment other than `none`, and an
+     * 'Output/Node data file' @p node_data_file (written by the quasi-static
+     * problem only). @p problem names the problem type in the message
+     * ("explicit dynamics", "the diffusion problem").
+     */
+    void
+    check_time_stepping_setup(const std::string &problem,
+                              const std::string &treatment,
+                              const std::string &node_data_file);
+
+
+    /**
      * Non-finite values, named by what made them. An input function (an
      * initial field, a prescribed value, a source, a load history) is
      * checked where it is evaluated: value() records the first non-finite
@@ -307,6 +320,14 @@ namespace PeriDEAL
     class EnergyBalanceMonitor
     {
     public:
+      /// One energy row: sums over all processes.
+      struct Row
+      {
+        double kinetic = 0, elastic = 0, external_work = 0;
+        /// dt^2/8 sum m |a|^2 at the row's step (0: not known).
+        double verlet_term = 0;
+      };
+
       /// Declare 'Energy balance tolerance' and 'Allow energy growth'.
       static void
       declare_parameters(ParameterHandler &prm);
@@ -319,28 +340,21 @@ namespace PeriDEAL
       reset();
 
       /// Take a row without checking it (rows restored from a checkpoint,
-      /// which do not keep @p verlet_term: 0, which can only hide a rise).
+      /// which do not keep the Verlet term: 0, which can only hide a rise).
       void
-      observe(const double kinetic,
-              const double elastic,
-              const double external_work,
-              const double verlet_term = 0);
+      observe(const Row &row);
 
       /**
-       * Check the row of step @p step at @p time, then take it;
-       * @p verlet_term is dt^2/8 sum m |a|^2 at that step. Throws on every
-       * process, or with 'Allow energy growth' warns once on @p pcout.
-       * Collective.
+       * Check the @p row of step @p step at @p time, then take it. Throws
+       * on every process, or with 'Allow energy growth' warns once on
+       * @p pcout. Collective.
        */
       void
-      check(const double          kinetic,
-            const double          elastic,
-            const double          external_work,
-            const double          verlet_term,
-            const std::uint64_t   step,
-            const double          time,
-            const double          dt_bound,
-            const MPI_Comm        comm,
+      check(const Row                &row,
+            const std::uint64_t       step,
+            const double              time,
+            const double              dt_bound,
+            const MPI_Comm            comm,
             const ConditionalOStream &pcout);
 
     private:

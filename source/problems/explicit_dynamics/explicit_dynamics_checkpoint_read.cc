@@ -11,7 +11,8 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <algorithm>
 #include <array>
@@ -83,28 +84,28 @@ namespace PeriDEAL
     void
     ExplicitDynamics<dim>::read_checkpoint(Simulator<dim> &simulator)
     {
-      namespace fs        = std::filesystem;
       const MPI_Comm comm = simulator.get_communicator();
       const auto     rank = Utilities::MPI::this_mpi_process(comm);
-      const fs::path base(simulator.get_output().directory());
+      const internal::ExplicitDynamicsCheckpoint::Directories dirs(
+        simulator.get_output().directory());
+      namespace fs = std::filesystem;
       // The complete checkpoint: checkpoint/, or checkpoint.old/ if the run
       // was killed between the two renames. Rank 0 decides for everyone.
       int where = 0;
       if (rank == 0)
-        where = fs::exists(base / "checkpoint" / "run.bin")     ? 1 :
-                fs::exists(base / "checkpoint.old" / "run.bin") ? 2 :
-                                                                  0;
+        where = fs::exists(dirs.good / "run.bin") ? 1 :
+                fs::exists(dirs.old / "run.bin")  ? 2 :
+                                                    0;
       where = Utilities::MPI::broadcast(comm, where, 0);
       AssertThrow(where > 0,
                   ExcInvalidInput("explicit dynamics/Resume from checkpoint",
                                   "true",
                                   "there is no checkpoint in '" +
-                                    (base / "checkpoint").string() +
+                                    dirs.good.string() +
                                     "'; run without resuming first, with "
                                     "'Checkpoint every steps' or 'Steps per "
                                     "run'"));
-      const fs::path dir =
-        base / (where == 1 ? "checkpoint" : "checkpoint.old");
+      const fs::path dir = where == 1 ? dirs.good : dirs.old;
 
       // What the checkpoint is checked against: the same on every process.
       const auto         &keys  = checkpoint_keys(simulator);
@@ -475,9 +476,6 @@ namespace PeriDEAL
     }
 
 
-    template void
-    ExplicitDynamics<2>::read_checkpoint(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::read_checkpoint(Simulator<3> &);
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, read_checkpoint, )
   } // namespace Problems
 } // namespace PeriDEAL

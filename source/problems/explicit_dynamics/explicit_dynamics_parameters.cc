@@ -279,24 +279,6 @@ namespace PeriDEAL
 
 
     template <int dim>
-    void
-    ExplicitDynamics<dim>::check_input(const Simulator<dim> &simulator) const
-    {
-      AssertThrow(simulator.get_boundary_treatment_name() == "none",
-                  ExcInvalidInput("Boundary treatment/Treatment",
-                                  simulator.get_boundary_treatment_name(),
-                                  "explicit dynamics supports the 'none' "
-                                  "treatment only so far"));
-      AssertThrow(simulator.get_node_data_file().empty(),
-                  ExcInvalidInput("Output/Node data file",
-                                  simulator.get_node_data_file(),
-                                  "the node data file is written by the "
-                                  "quasi-static problem only; leave it "
-                                  "empty"));
-    }
-
-
-    template <int dim>
     std::vector<UnusedEntry>
     ExplicitDynamics<dim>::unused_entries(const Simulator<dim> &simulator) const
     {
@@ -382,10 +364,6 @@ namespace PeriDEAL
     ExplicitDynamics<2>::parse_parameters(ParameterHandler &);
     template void
     ExplicitDynamics<3>::parse_parameters(ParameterHandler &);
-    template void
-    ExplicitDynamics<2>::check_input(const Simulator<2> &) const;
-    template void
-    ExplicitDynamics<3>::check_input(const Simulator<3> &) const;
     template std::vector<UnusedEntry>
     ExplicitDynamics<2>::unused_entries(const Simulator<2> &) const;
     template std::vector<UnusedEntry>

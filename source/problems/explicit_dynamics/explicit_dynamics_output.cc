@@ -10,7 +10,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_internal.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <cmath>
 #include <filesystem>
@@ -96,10 +96,7 @@ namespace PeriDEAL
               mass.local_element(k) * a.local_element(k) * a.local_element(k);
           verlet_term = dt * dt / 8 * Utilities::MPI::sum(verlet_term, comm);
         }
-      energy_monitor.check(kinetic,
-                           elastic,
-                           external_work,
-                           verlet_term,
+      energy_monitor.check({kinetic, elastic, external_work, verlet_term},
                            step_number,
                            time,
                            dt_bound,
@@ -240,21 +237,9 @@ namespace PeriDEAL
     }
 
 
-    template void
-    ExplicitDynamics<2>::record_energies(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::record_energies(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::print_progress_line(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::print_progress_line(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::write_output(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::write_output(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::check_finite(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::check_finite(Simulator<3> &);
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, record_energies, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, print_progress_line, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_output, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, check_finite, )
   } // namespace Problems
 } // namespace PeriDEAL

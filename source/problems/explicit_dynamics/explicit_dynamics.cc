@@ -1,8 +1,9 @@
 /**
  * @file
  * The explicit dynamics problem type (ExplicitDynamics): the time loop of
- * run() (output, energy rows, checkpoints) and velocity Verlet, one step
- * with its forces, loads, prescribed values and external work. The class
+ * run() (output, energy rows, checkpoints) and one step (the integrator's
+ * VelocityVerlet) with its forces, loads, prescribed values and external
+ * work. The class
  * is instantiated here and registers itself as 'explicit dynamics'; its
  * entries, set-up, output and checkpoints are in the
  * explicit_dynamics_*.cc files.
@@ -31,7 +32,7 @@ namespace PeriDEAL
         {
           read_checkpoint(simulator);
           for (const auto &row : energy_rows)
-            energy_monitor.observe(row[2], row[3], row[4]);
+            energy_monitor.observe({row[2], row[3], row[4]});
         }
       else
         {
@@ -41,6 +42,7 @@ namespace PeriDEAL
           write_output(simulator);
         }
       TimerOutput::Scope scope(simulator.get_timer(), "time steps");
+      integrator.set_time_step(dt);
       loop_start          = simulator.elapsed();
       loop_start_step     = step_number;
       last_progress       = loop_start;
@@ -189,23 +191,11 @@ namespace PeriDEAL
     {
       // The load at the current time (after a resume: not yet evaluated).
       update_load(simulator, time);
-      const unsigned int n        = u.locally_owned_size();
-      const double       old_load = load_factor;
-      double             work     = 0;
-      double            *pu = u.begin(), *pv = v.begin(), *pa = a.begin();
-      const double      *free = free_dof.data(), *pl = load.begin();
-      // Half step of the velocity, full step of the displacement (of the
-      // free DoFs).
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          const double half = pv[k] + 0.5 * dt * pa[k];
-          const double next = pu[k] + dt * half;
-          pv[k]             = free[k] != 0 ? half : pv[k];
-          pu[k]             = free[k] != 0 ? next : pu[k];
-        }
+      const double old_load = load_factor;
+      double       work     = 0;
+      integrator.advance_first_half(u, v, a, free_dof);
       if (with_load)
-        for (unsigned int k = 0; k < n; ++k)
-          work += 0.5 * old_load * pl[k] * dt * pv[k] * free[k];
+        work = integrator.add_load_work(work, old_load, load, v, free_dof);
       // Prescribed components at the new time; their old values and forces
       // for the work of the reactions.
       std::vector<double> old_u(prescribed.size()), old_v(prescribed.size()),
@@ -223,18 +213,10 @@ namespace PeriDEAL
       // The energy of this step comes with its forces when run() will
       // record it (the same test as there).
       compute_acceleration(simulator, records_energies());
+      // The load at the new time (update_load() may have rewritten it).
       if (with_load)
-        {
-          // The load at the new time (update_load() may have rewritten it).
-          const double *new_load = load.begin();
-          for (unsigned int k = 0; k < n; ++k)
-            work += 0.5 * load_factor * new_load[k] * dt * pv[k] * free[k];
-        }
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          const double next = pv[k] + 0.5 * dt * pa[k];
-          pv[k]             = free[k] != 0 ? next : pv[k];
-        }
+        work = integrator.add_load_work(work, load_factor, load, v, free_dof);
+      integrator.advance_second_half(v, a, free_dof);
       for (unsigned int q = 0; q < prescribed.size(); ++q)
         {
           const unsigned int k = prescribed[q].index;

@@ -12,7 +12,8 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,12 +34,13 @@ namespace PeriDEAL
     void
     ExplicitDynamics<dim>::write_checkpoint(Simulator<dim> &simulator)
     {
-      namespace fs        = std::filesystem;
-      const MPI_Comm comm = simulator.get_communicator();
-      const auto     rank = Utilities::MPI::this_mpi_process(comm);
-      const fs::path base(simulator.get_output().directory());
-      const fs::path fresh = base / "checkpoint.new",
-                     good = base / "checkpoint", old = base / "checkpoint.old";
+      const internal::ExplicitDynamicsCheckpoint::Directories dirs(
+        simulator.get_output().directory());
+      namespace fs         = std::filesystem;
+      const fs::path &base = dirs.base, &fresh = dirs.fresh,
+                     &good = dirs.good, &old = dirs.old;
+      const MPI_Comm  comm = simulator.get_communicator();
+      const auto      rank = Utilities::MPI::this_mpi_process(comm);
       const auto &keys = checkpoint_keys(simulator);
       {
         std::string error;
@@ -171,12 +173,13 @@ namespace PeriDEAL
         return;
       const double   first_time = first * dt;
       const MPI_Comm comm       = simulator.get_communicator();
-      const fs::path base(simulator.get_output().directory());
-      std::string    error;
+      const internal::ExplicitDynamicsCheckpoint::Directories dirs(
+        simulator.get_output().directory());
+      std::string error;
       if (Utilities::MPI::this_mpi_process(comm) == 0)
-        for (const char *name : {"checkpoint", "checkpoint.old"})
+        for (const fs::path &dir : {dirs.good, dirs.old})
           {
-            const fs::path  path = base / name / "run.bin";
+            const fs::path  path = dir / "run.bin";
             std::error_code code;
             if (!fs::exists(path, code))
               continue;
@@ -219,13 +222,9 @@ namespace PeriDEAL
     }
 
 
-    template void
-    ExplicitDynamics<2>::write_checkpoint(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::write_checkpoint(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::check_checkpoint_overwrite(Simulator<2> &) const;
-    template void
-    ExplicitDynamics<3>::check_checkpoint_overwrite(Simulator<3> &) const;
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_checkpoint, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void,
+                                           check_checkpoint_overwrite,
+                                           const)
   } // namespace Problems
 } // namespace PeriDEAL

@@ -62,6 +62,24 @@ namespace PeriDEAL
         constexpr std::uint64_t magic    = 0x5045524944594e33; // "PERIDYN3"
         constexpr std::uint64_t magic_v2 = 0x5045524944594e32; // "PERIDYN2"
 
+        /**
+         * The checkpoint directories under 'Output/Directory': the last
+         * complete checkpoint, the one being written (renamed into place
+         * when complete) and the previous one (kept until the rename has
+         * succeeded, so that a run killed in between still has one).
+         */
+        struct Directories
+        {
+          explicit Directories(const std::string &output_directory)
+            : base(output_directory)
+            , good(base / "checkpoint")
+            , fresh(base / "checkpoint.new")
+            , old(base / "checkpoint.old")
+          {}
+
+          std::filesystem::path base, good, fresh, old;
+        };
+
         /// 64-bit FNV-1a of the bytes added so far.
         struct Checksum
         {

@@ -11,7 +11,7 @@
 
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_checkpoint_format.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_checkpoint_format.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>

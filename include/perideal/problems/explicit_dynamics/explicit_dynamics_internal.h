@@ -5,7 +5,8 @@
  * @file
  * What the source files of the explicit dynamics problem type
  * (Problems::ExplicitDynamics) share besides the class: the format of
- * numbers in their messages. Not part of the library's interface.
+ * numbers in their messages and the explicit instantiation of the members
+ * each defines. Not part of the library's interface.
  */
 
 #include <iomanip>
@@ -32,5 +33,14 @@ namespace PeriDEAL
     }   // namespace internal
   }     // namespace Problems
 } // namespace PeriDEAL
+
+/**
+ * Instantiate the member function @p name of ExplicitDynamics that takes
+ * the simulator and returns @p type, in 2D and 3D; @p qualifier is the
+ * member's qualifier (`const`) or empty.
+ */
+#define PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(type, name, qualifier) \
+  template type ExplicitDynamics<2>::name(Simulator<2> &) qualifier; \
+  template type ExplicitDynamics<3>::name(Simulator<3> &) qualifier;
 
 #endif

@@ -12,7 +12,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
-#include <perideal/problems/explicit_dynamics_internal.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
 #include <array>
 #include <cmath>
@@ -374,17 +374,8 @@ namespace PeriDEAL
     }
 
 
-    template void
-    ExplicitDynamics<2>::setup(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::setup(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::choose_time_step(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::choose_time_step(Simulator<3> &);
-    template void
-    ExplicitDynamics<2>::initialize(Simulator<2> &);
-    template void
-    ExplicitDynamics<3>::initialize(Simulator<3> &);
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, setup, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, choose_time_step, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, initialize, )
   } // namespace Problems
 } // namespace PeriDEAL
