@@ -262,17 +262,15 @@ namespace PeriDEAL
     }
 
 
-    template SolverReport
-    LinearSolver::solve<2>(const Operators::ConstrainedOperator<2> &,
-                           VectorType &,
-                           const VectorType &,
-                           const TrilinosWrappers::SparseMatrix *,
-                           const std::vector<std::vector<bool>> &) const;
-    template SolverReport
-    LinearSolver::solve<3>(const Operators::ConstrainedOperator<3> &,
-                           VectorType &,
-                           const VectorType &,
-                           const TrilinosWrappers::SparseMatrix *,
-                           const std::vector<std::vector<bool>> &) const;
+#define PERIDEAL_INSTANTIATE(dim)                 \
+  template SolverReport LinearSolver::solve<dim>( \
+    const Operators::ConstrainedOperator<dim> &,  \
+    VectorType &,                                 \
+    const VectorType &,                           \
+    const TrilinosWrappers::SparseMatrix *,       \
+    const std::vector<std::vector<bool>> &) const;
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
   } // namespace Solvers
 } // namespace PeriDEAL
