@@ -9,6 +9,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <perideal/base/read_number.h>
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
@@ -73,17 +74,8 @@ namespace
   double
   parse_number(const std::string &option, const std::string &value)
   {
-    std::size_t end = 0;
-    double      x   = 0;
-    try
-      {
-        x = std::stod(value, &end);
-      }
-    catch (...)
-      {
-        end = 0;
-      }
-    if (end != value.size() || value.empty())
+    double x = 0;
+    if (!read_number(value, x))
       fail("option " + option + " expects a number, got '" + value + "'");
     return x;
   }

@@ -3,6 +3,7 @@
 
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
+#include <perideal/base/read_number.h>
 
 #include <cctype>
 #include <cmath>
@@ -22,6 +23,39 @@ namespace PeriDEAL
   }
 
 
+  namespace
+  {
+    /**
+     * Follow one trimmed line of a parameter file in PRM syntax:
+     * "subsection X" enters X in @p path, "end" leaves it.
+     * @return true for a "set Name = value" line, with @p name (without
+     * its path) and @p value trimmed; false for every other line.
+     */
+    bool
+    read_prm_line(const std::string        &line,
+                  std::vector<std::string> &path,
+                  std::string              &name,
+                  std::string              &value)
+    {
+      if (line.rfind("subsection ", 0) == 0)
+        path.push_back(dealii::Utilities::trim(line.substr(11)));
+      else if (line == "end" && !path.empty())
+        path.pop_back();
+      else if (line.rfind("set ", 0) == 0)
+        {
+          // Names hold no '='; values may (muparser's "==").
+          const auto equal = line.find('=');
+          if (equal == std::string::npos)
+            return false;
+          name  = dealii::Utilities::trim(line.substr(4, equal - 4));
+          value = dealii::Utilities::trim(line.substr(equal + 1));
+          return true;
+        }
+      return false;
+    }
+  } // namespace
+
+
   std::vector<InputEntry>
   scan_input_file(const std::string &file)
   {
@@ -38,23 +72,16 @@ namespace PeriDEAL
         const auto comment = line.find('#');
         if (comment != std::string::npos)
           line.erase(comment);
-        line = dealii::Utilities::trim(line);
-        if (line.rfind("subsection ", 0) == 0)
-          path.push_back(dealii::Utilities::trim(line.substr(11)));
-        else if (line == "end" && !path.empty())
-          path.pop_back();
-        else if (line.rfind("set ", 0) == 0)
+        std::string entry_name, value;
+        if (read_prm_line(dealii::Utilities::trim(line),
+                          path,
+                          entry_name,
+                          value))
           {
-            const auto equal = line.find('=');
-            if (equal == std::string::npos)
-              continue;
             InputEntry entry{path, number};
-            entry.path.push_back(
-              dealii::Utilities::trim(line.substr(4, equal - 4)));
-            const std::string name  = entry.name();
-            const std::string value = dealii::Utilities::trim(
-              line.substr(equal + 1));
-            const auto seen = first_line.find(name);
+            entry.path.push_back(entry_name);
+            const std::string name = entry.name();
+            const auto        seen = first_line.find(name);
             AssertThrow(seen == first_line.end(),
                         dealii::ExcMessage(
                           "The entry '" + name + "' is set twice in '" + file +
@@ -95,20 +122,16 @@ namespace PeriDEAL
       std::string                        line;
       while (std::getline(in, line))
         {
-          line = dealii::Utilities::trim(line);
-          if (line.rfind("subsection ", 0) == 0)
-            path.push_back(dealii::Utilities::trim(line.substr(11)));
-          else if (line == "end" && !path.empty())
-            path.pop_back();
-          else if (line.rfind("set ", 0) == 0)
+          std::string entry_name, value;
+          if (read_prm_line(dealii::Utilities::trim(line),
+                            path,
+                            entry_name,
+                            value))
             {
-              // Names hold no '='; values may (muparser's "==").
-              const auto  equal = line.find('=');
               std::string name;
               for (const auto &p : path)
                 name += p + "/";
-              name += dealii::Utilities::trim(line.substr(4, equal - 4));
-              values[name] = dealii::Utilities::trim(line.substr(equal + 1));
+              values[name + entry_name] = value;
             }
         }
       return values;
@@ -127,20 +150,8 @@ namespace PeriDEAL
           y += c;
       if (x == y)
         return true;
-      const auto number = [](const std::string &text, double &value) {
-        std::size_t used = 0;
-        try
-          {
-            value = std::stod(text, &used);
-          }
-        catch (...)
-          {
-            return false;
-          }
-        return used == text.size();
-      };
       double u = 0, v = 0;
-      return number(x, u) && number(y, v) && u == v;
+      return read_number(x, u) && read_number(y, v) && u == v;
     }
 
 

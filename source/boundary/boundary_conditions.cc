@@ -6,6 +6,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/base/input_checks.h>
+#include <perideal/base/read_number.h>
 #include <perideal/boundary/boundary_conditions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/discretization/crack_geometry.h>
@@ -217,18 +218,9 @@ namespace PeriDEAL
       for (const auto &component : Utilities::split_string_list(
              prm.get("Function expression"), ';'))
         {
-          std::size_t used = 0;
-          double      x    = 1;
-          try
-            {
-              x = std::stod(component, &used);
-            }
-          catch (...)
-            {
-              used = 0;
-            }
+          double x = 1;
           zero_body_force =
-            zero_body_force && used == component.size() && x == 0;
+            zero_body_force && read_number(component, x) && x == 0;
         }
       prm.leave_subsection();
       prm.enter_subsection("Boundary stress");

@@ -14,6 +14,45 @@ namespace PeriDEAL
 {
   namespace Boundary
   {
+    namespace
+    {
+      /**
+       * Call @p visit(i, point, k, candidates) for each node i of @p nodes
+       * (owned and ghost; @p point is the degenerate box at its location)
+       * and each face set k of @p faces, in this order, with the faces of
+       * set k whose boxes meet the node's box grown by @p thickness, as the
+       * R-tree of that set lists them.
+       */
+      template <int dim, typename Visitor>
+      void
+      for_each_nearby_face_set(
+        const std::vector<std::vector<BoundingBox<dim>>> &faces,
+        const Discretization::NodeSet<dim>               &nodes,
+        const double                                      thickness,
+        const Visitor                                    &visit)
+      {
+        std::vector<decltype(pack_rtree(faces[0]))> trees;
+        for (const auto &f : faces)
+          trees.push_back(pack_rtree(f));
+        std::vector<BoundingBox<dim>> candidates;
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          {
+            const auto            &x = nodes[i].location;
+            const BoundingBox<dim> point(std::make_pair(x, x));
+            BoundingBox<dim>       search = point;
+            search.extend(thickness);
+            for (unsigned int k = 0; k < trees.size(); ++k)
+              {
+                candidates.clear();
+                trees[k].query(boost::geometry::index::intersects(search),
+                               std::back_inserter(candidates));
+                visit(i, point, k, candidates);
+              }
+          }
+      }
+    } // namespace
+
+
     std::vector<types::boundary_id>
     parse_boundary_ids(const std::string &text)
     {
@@ -111,37 +150,29 @@ namespace PeriDEAL
       const double                        thickness,
       std::vector<unsigned int>          *n_owned_per_id) const
     {
-      std::vector<decltype(pack_rtree(faces[0]))> trees;
-      for (const auto &f : faces)
-        trees.push_back(pack_rtree(f));
-      const double                  limit = thickness * (1 - 1e-10);
-      std::vector<unsigned int>     layer(nodes.size(),
+      const double              limit = thickness * (1 - 1e-10);
+      std::vector<unsigned int> layer(nodes.size(),
                                       numbers::invalid_unsigned_int);
-      std::vector<unsigned int>     count(faces.size(), 0);
-      std::vector<BoundingBox<dim>> candidates;
-      for (unsigned int i = 0; i < nodes.size(); ++i)
-        {
-          const auto            &x = nodes[i].location;
-          const BoundingBox<dim> point(std::make_pair(x, x));
-          BoundingBox<dim>       search = point;
-          search.extend(thickness);
-          for (unsigned int k = 0; k < trees.size(); ++k)
-            {
-              candidates.clear();
-              trees[k].query(boost::geometry::index::intersects(search),
-                             std::back_inserter(candidates));
-              for (const auto &face : candidates)
-                if (Discretization::box_distance_squared(face, point) <
-                    limit * limit)
-                  {
-                    if (layer[i] == numbers::invalid_unsigned_int)
-                      layer[i] = k;
-                    if (i < nodes.n_owned())
-                      ++count[k];
-                    break;
-                  }
-            }
-        }
+      std::vector<unsigned int> count(faces.size(), 0);
+      for_each_nearby_face_set(
+        faces,
+        nodes,
+        thickness,
+        [&](const unsigned int                   i,
+            const BoundingBox<dim>              &point,
+            const unsigned int                   k,
+            const std::vector<BoundingBox<dim>> &candidates) {
+          for (const auto &face : candidates)
+            if (Discretization::box_distance_squared(face, point) <
+                limit * limit)
+              {
+                if (layer[i] == numbers::invalid_unsigned_int)
+                  layer[i] = k;
+                if (i < nodes.n_owned())
+                  ++count[k];
+                break;
+              }
+        });
       if (n_owned_per_id != nullptr)
         {
           if (!count.empty())
@@ -158,42 +189,36 @@ namespace PeriDEAL
       const Discretization::NodeSet<dim> &nodes,
       const double                        thickness) const
     {
-      std::vector<decltype(pack_rtree(faces[0]))> trees;
-      for (const auto &f : faces)
-        trees.push_back(pack_rtree(f));
       Point<dim> none;
       for (unsigned int d = 0; d < dim; ++d)
         none[d] = std::numeric_limits<double>::quiet_NaN();
-      std::vector<Point<dim>>       nearest(nodes.size(), none);
-      std::vector<BoundingBox<dim>> candidates;
-      for (unsigned int i = 0; i < nodes.size(); ++i)
-        {
-          const auto            &x = nodes[i].location;
-          const BoundingBox<dim> point(std::make_pair(x, x));
-          BoundingBox<dim>       search = point;
-          search.extend(thickness);
-          double best = thickness * thickness;
-          for (const auto &tree : trees)
+      std::vector<Point<dim>> nearest(nodes.size(), none);
+      // The squared distance of nearest[i], over all face sets.
+      std::vector<double> best(nodes.size(), thickness * thickness);
+      for_each_nearby_face_set(
+        faces,
+        nodes,
+        thickness,
+        [&](const unsigned int i,
+            const BoundingBox<dim> &,
+            const unsigned int,
+            const std::vector<BoundingBox<dim>> &candidates) {
+          const auto &x = nodes[i].location;
+          for (const auto &face : candidates)
             {
-              candidates.clear();
-              tree.query(boost::geometry::index::intersects(search),
-                         std::back_inserter(candidates));
-              for (const auto &face : candidates)
+              Point<dim> p;
+              for (unsigned int d = 0; d < dim; ++d)
+                p[d] = std::clamp(x[d],
+                                  face.get_boundary_points().first[d],
+                                  face.get_boundary_points().second[d]);
+              const double d2 = p.distance_square(x);
+              if (d2 < best[i])
                 {
-                  Point<dim> p;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    p[d] = std::clamp(x[d],
-                                      face.get_boundary_points().first[d],
-                                      face.get_boundary_points().second[d]);
-                  const double d2 = p.distance_square(x);
-                  if (d2 < best)
-                    {
-                      best       = d2;
-                      nearest[i] = p;
-                    }
+                  best[i]    = d2;
+                  nearest[i] = p;
                 }
             }
-        }
+        });
       return nearest;
     }
 

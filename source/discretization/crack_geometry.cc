@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/base/read_number.h>
 #include <perideal/discretization/crack_geometry.h>
 
 #include <array>
@@ -27,18 +28,8 @@ namespace PeriDEAL
             std::vector<double> numbers;
             for (const auto &word : Utilities::split_string_list(item, ','))
               {
-                std::size_t used = 0;
-                double      x    = 0;
-                try
-                  {
-                    x = std::stod(word, &used);
-                  }
-                catch (...)
-                  {
-                    used = 0;
-                  }
-                AssertThrow(used == word.size() && !word.empty() &&
-                              std::isfinite(x),
+                double x = 0;
+                AssertThrow(read_number(word, x) && std::isfinite(x),
                             ExcInvalidInput(entry,
                                             text,
                                             "'" + word + "' in '" + item +
@@ -796,30 +787,22 @@ namespace PeriDEAL
 
     template class PreCracks<2>;
     template class PreCracks<3>;
-    template std::vector<BoundingBox<1>>
-    parse_boxes<1>(const std::string &, const std::string &);
-    template std::vector<Point<1>>
-    parse_points<1>(const std::string &, const std::string &);
-    template std::vector<bool>
-    nodes_in_boxes<1>(const NodeSet<1> &,
-                      const std::vector<BoundingBox<1>> &,
-                      const std::string &,
-                      const std::string &,
-                      const std::string &);
-    template std::vector<BoundingBox<2>>
-    parse_boxes<2>(const std::string &, const std::string &);
-    template std::vector<BoundingBox<3>>
-    parse_boxes<3>(const std::string &, const std::string &);
-    template std::vector<Point<2>>
-    parse_points<2>(const std::string &, const std::string &);
-    template std::vector<Point<3>>
-    parse_points<3>(const std::string &, const std::string &);
-    template std::vector<bool>
-    nodes_in_boxes<2>(const NodeSet<2> &,
-                      const std::vector<BoundingBox<2>> &,
-                      const std::string &,
-                      const std::string &,
-                      const std::string &);
+#define PERIDEAL_INSTANTIATE(dim)                                          \
+  template std::vector<BoundingBox<dim>> parse_boxes<dim>(                 \
+    const std::string &,                                                   \
+    const std::string &);                                                  \
+  template std::vector<Point<dim>> parse_points<dim>(const std::string &,  \
+                                                     const std::string &); \
+  template std::vector<bool>       nodes_in_boxes<dim>(                    \
+    const NodeSet<dim> &,                                            \
+    const std::vector<BoundingBox<dim>> &,                           \
+    const std::string &,                                             \
+    const std::string &,                                             \
+    const std::string &);
+    PERIDEAL_INSTANTIATE(1)
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
     template void
     check_points_in_body<2>(const NodeSet<2> &,
                             const std::vector<Point<2>> &,
@@ -830,11 +813,5 @@ namespace PeriDEAL
                             const std::vector<Point<3>> &,
                             const std::string &,
                             const std::string &);
-    template std::vector<bool>
-    nodes_in_boxes<3>(const NodeSet<3> &,
-                      const std::vector<BoundingBox<3>> &,
-                      const std::string &,
-                      const std::string &,
-                      const std::string &);
   } // namespace Discretization
 } // namespace PeriDEAL

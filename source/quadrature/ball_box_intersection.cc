@@ -221,6 +221,39 @@ namespace PeriDEAL
 
 
       /**
+       * Inclusion-exclusion over the corners of the box [lower, upper]: the
+       * sum of corner_measure(corner) over the \f$2^{dim}\f$ corners, with
+       * sign \f$(-1)^k\f$ for a corner that takes k coordinates from
+       * @p upper. Shared by the general boxes (real coordinates) and the
+       * uniform-grid tables (integer half units), so that both add the
+       * corners in the same order.
+       */
+      template <int dim, typename Coordinate, typename CornerMeasure>
+      real
+      signed_corner_sum(const std::array<Coordinate, dim> &lower,
+                        const std::array<Coordinate, dim> &upper,
+                        const CornerMeasure               &corner_measure)
+      {
+        real sum = 0;
+        for (unsigned int vertex = 0; vertex < (1u << dim); ++vertex)
+          {
+            std::array<Coordinate, dim> corner;
+            int                         sign = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (vertex & (1u << d))
+                {
+                  corner[d] = upper[d];
+                  sign      = -sign;
+                }
+              else
+                corner[d] = lower[d];
+            sum += sign * corner_measure(corner);
+          }
+        return sum;
+      }
+
+
+      /**
        * Measure of the ball of radius R around the origin intersected with
        * the box [lower, upper], all coordinates >= 0: inclusion-exclusion
        * over the box corners.
@@ -244,21 +277,7 @@ namespace PeriDEAL
         if (farthest2 <= R * R)
           return box_measure;
 
-        real sum = 0;
-        for (unsigned int vertex = 0; vertex < (1u << dim); ++vertex)
-          {
-            std::array<real, dim> corner;
-            int                   sign = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              if (vertex & (1u << d))
-                {
-                  corner[d] = upper[d];
-                  sign      = -sign;
-                }
-              else
-                corner[d] = lower[d];
-            sum += sign * corner_measure(corner);
-          }
+        const real sum = signed_corner_sum<dim>(lower, upper, corner_measure);
         // The exact value lies in [0, box_measure]; clip round-off.
         return std::min(std::max(sum, real(0)), box_measure);
       }
@@ -449,21 +468,8 @@ namespace PeriDEAL
             measures.push_back(1);
           else
             {
-              real sum = 0;
-              for (unsigned int vertex = 0; vertex < (1u << dim); ++vertex)
-                {
-                  std::array<int, dim> corner;
-                  int                  sign = 1;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    if (vertex & (1u << d))
-                      {
-                        corner[d] = upper[d];
-                        sign      = -sign;
-                      }
-                    else
-                      corner[d] = lower[d];
-                  sum += sign * corner_measure(corner);
-                }
+              const real sum =
+                signed_corner_sum<dim>(lower, upper, corner_measure);
               const real piece = real(1) / multiplicity;
               measures.push_back(static_cast<double>(
                 multiplicity * std::min(std::max(sum, real(0)), piece)));

@@ -1,5 +1,6 @@
 #include <perideal/quadrature/ball_box_intersection.h>
 #include <perideal/quadrature/exact_partial_volume.h>
+#include <perideal/quadrature/partial_volume_registration.h>
 
 #include <algorithm>
 #include <cmath>
@@ -48,19 +49,10 @@ namespace PeriDEAL
   } // namespace Quadrature
 } // namespace PeriDEAL
 
-PERIDEAL_REGISTER_PARTIAL_VOLUME(
+PERIDEAL_REGISTER_PARTIAL_VOLUME_1D_2D_3D(
   PeriDEAL::Quadrature::ExactPartialVolume,
-  1,
   "exact",
-  "Exact length of the part of the cell within the horizon.")
-PERIDEAL_REGISTER_PARTIAL_VOLUME(
-  PeriDEAL::Quadrature::ExactPartialVolume,
-  2,
-  "exact",
-  "Exact partial area of disc and cell in closed form (any rectangle).")
-PERIDEAL_REGISTER_PARTIAL_VOLUME(
-  PeriDEAL::Quadrature::ExactPartialVolume,
-  3,
-  "exact",
+  "Exact length of the part of the cell within the horizon.",
+  "Exact partial area of disc and cell in closed form (any rectangle).",
   "Exact partial volume of ball and cell in closed form (any box), "
   "accurate to about 1e-16 times the cell volume.")

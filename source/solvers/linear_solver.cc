@@ -109,6 +109,23 @@ namespace PeriDEAL
                   names[k];
         return list;
       }
+
+
+      /**
+       * Stop on a Trilinos solver that threw @p exc: @p explanation (what
+       * failed, its common causes and the fixes), followed by what Trilinos
+       * said.
+       */
+      void
+      throw_trilinos_failure(const dealii::ExceptionBase &exc,
+                             const std::string           &explanation)
+      {
+        std::ostringstream original;
+        exc.print_info(original);
+        AssertThrow(false,
+                    ExcMessage(explanation +
+                               "Trilinos said: " + original.str()));
+      }
     } // namespace
 
 
@@ -425,21 +442,16 @@ namespace PeriDEAL
                 }
               catch (const dealii::ExceptionBase &exc)
                 {
-                  std::ostringstream original;
-                  exc.print_info(original);
-                  AssertThrow(
-                    false,
-                    ExcMessage(
-                      "The direct solver (" + report.method + ") failed on " +
+                  throw_trilinos_failure(
+                    exc,
+                    "The direct solver (" + report.method + ") failed on " +
                       std::to_string(matrix.m()) + " unknowns with " +
                       std::to_string(matrix.n_nonzero_elements()) +
                       " nonzeros: the matrix is singular (a rigid motion "
                       "that no Dirichlet condition fixes) or the "
                       "factorisation ran out of memory. Check 'Boundary "
                       "conditions/Dirichlet boundary ids', or use 'Linear "
-                      "solver/Operator = matrix-free' with 'Method = CG'. "
-                      "Trilinos said: " +
-                      original.str()));
+                      "solver/Operator = matrix-free' with 'Method = CG'. ");
                 }
             }
           report.iterations = 1;
@@ -491,19 +503,15 @@ namespace PeriDEAL
               catch (const dealii::ExceptionBase &exc)
                 {
                   // AztecOO reports breakdowns as error codes.
-                  std::ostringstream original;
-                  exc.print_info(original);
-                  AssertThrow(
-                    false,
-                    ExcMessage(
-                      "The Krylov solver (" + report.method +
-                      ") broke down. Common causes: a singular system (a rigid "
-                      "motion that no Dirichlet condition fixes), a "
+                  throw_trilinos_failure(
+                    exc,
+                    "The Krylov solver (" + report.method +
+                      ") broke down. Common causes: a singular system (a "
+                      "rigid motion that no Dirichlet condition fixes), a "
                       "preconditioner that does not suit the matrix (try "
-                      "'Linear solver/Preconditioner = AMG' or ILU, or 'Method = "
-                      "GMRES' for non-symmetric systems), or a 'Relative "
-                      "tolerance' below round-off. Trilinos said: " +
-                      original.str()));
+                      "'Linear solver/Preconditioner = AMG' or ILU, or "
+                      "'Method = GMRES' for non-symmetric systems), or a "
+                      "'Relative tolerance' below round-off. ");
                 }
             }
           catch (const SolverControl::NoConvergence &e)

@@ -46,6 +46,34 @@ namespace PeriDEAL
       };
 
 
+      /**
+       * Complete @p report of a converged Krylov solve: its iterations, the
+       * relative residual it actually reached, measured with the operator
+       * (@p residual holds A x on entry, |b - A x| / |b| is reported), the
+       * check of that residual, and the wall time since @p timer started.
+       */
+      template <typename Vector>
+      SolverReport
+      finish_report(SolverReport         report,
+                    const SolverControl &control,
+                    Vector              &residual,
+                    const Vector        &rhs,
+                    const double         rhs_norm,
+                    const Timer         &timer)
+      {
+        report.iterations = control.last_step();
+        residual.sadd(-1., 1., rhs);
+        report.relative_residual = residual.l2_norm() / rhs_norm;
+        internal::check_solve_result(control.last_check() ==
+                                       SolverControl::success,
+                                     control.last_value(),
+                                     report.relative_residual,
+                                     report.method);
+        report.seconds = timer.wall_time();
+        return report;
+      }
+
+
       /// Stop on a Krylov solve that did not converge, with @p fix.
       [[noreturn]] void
       throw_no_convergence(const std::string                  &method,
@@ -149,21 +177,10 @@ namespace PeriDEAL
                                "motion.");
         }
       release_preconditioner();
-      report.iterations = control.last_step();
-
-      // The residual actually reached, measured with the operator.
       VectorType residual;
       op.initialize_dof_vector(residual);
       op.vmult(residual, solution);
-      residual.sadd(-1., 1., rhs);
-      report.relative_residual = residual.l2_norm() / rhs_norm;
-      internal::check_solve_result(control.last_check() ==
-                                     SolverControl::success,
-                                   control.last_value(),
-                                   report.relative_residual,
-                                   report.method);
-      report.seconds = timer.wall_time();
-      return report;
+      return finish_report(report, control, residual, rhs, rhs_norm, timer);
     }
 
 
@@ -239,32 +256,21 @@ namespace PeriDEAL
                                "elasticity', or 'Operator = assembled' with a "
                                "direct solver.");
         }
-      report.iterations = control.last_step();
       Vector residual(rhs);
       op(residual, solution);
-      residual.sadd(-1., 1., rhs);
-      report.relative_residual = residual.l2_norm() / rhs_norm;
-      internal::check_solve_result(control.last_check() ==
-                                     SolverControl::success,
-                                   control.last_value(),
-                                   report.relative_residual,
-                                   report.method);
-      report.seconds = timer.wall_time();
-      return report;
+      return finish_report(report, control, residual, rhs, rhs_norm, timer);
     }
 
 
-    template SolverReport
-    LinearSolver::solve<2>(const Operators::ConstrainedOperator<2> &,
-                           VectorType &,
-                           const VectorType &,
-                           const TrilinosWrappers::SparseMatrix *,
-                           const std::vector<std::vector<bool>> &) const;
-    template SolverReport
-    LinearSolver::solve<3>(const Operators::ConstrainedOperator<3> &,
-                           VectorType &,
-                           const VectorType &,
-                           const TrilinosWrappers::SparseMatrix *,
-                           const std::vector<std::vector<bool>> &) const;
+#define PERIDEAL_INSTANTIATE(dim)                 \
+  template SolverReport LinearSolver::solve<dim>( \
+    const Operators::ConstrainedOperator<dim> &,  \
+    VectorType &,                                 \
+    const VectorType &,                           \
+    const TrilinosWrappers::SparseMatrix *,       \
+    const std::vector<std::vector<bool>> &) const;
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
   } // namespace Solvers
 } // namespace PeriDEAL

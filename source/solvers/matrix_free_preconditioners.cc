@@ -12,6 +12,7 @@
 #include <deal.II/lac/precondition.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/solvers/integer_entry.h>
 #include <perideal/solvers/preconditioner.h>
 
 #include <memory>
@@ -53,29 +54,20 @@ namespace PeriDEAL
       };
 
 
+      /// The degree of the polynomial: more work per application, fewer
+      /// iterations.
+      constexpr IntegerEntry chebyshev_degree =
+        {"Degree", 4, 1, 30, "Degree of the Chebyshev polynomial."};
+
       /**
        * A Chebyshev polynomial of the operator, on its exact diagonal, over
        * the whole spectrum (the extreme eigenvalues estimated by 20 CG
        * iterations).
        */
-      class Chebyshev : public Preconditioner
+      class Chebyshev
+        : public WithIntegerEntry<Preconditioner, chebyshev_degree>
       {
       public:
-        static void
-        declare_parameters(ParameterHandler &prm)
-        {
-          prm.declare_entry("Degree",
-                            "4",
-                            Patterns::Integer(1, 30),
-                            "Degree of the Chebyshev polynomial.");
-        }
-
-        void
-        parse_parameters(ParameterHandler &prm) override
-        {
-          degree = prm.get_integer("Degree");
-        }
-
         bool
         supports(const OperatorForm form) const override
         {
@@ -89,7 +81,7 @@ namespace PeriDEAL
           action.apply  = setup.apply;
           action.n_rows = setup.n_rows;
           typename Polynomial::AdditionalData data;
-          data.degree              = degree;
+          data.degree              = this->integer_parameter;
           data.smoothing_range     = 0.; // precondition the whole spectrum
           data.eig_cg_n_iterations = 20;
           data.preconditioner = std::make_shared<DiagonalMatrix<VectorType>>(
@@ -115,7 +107,6 @@ namespace PeriDEAL
         using Polynomial = PreconditionChebyshev<OperatorAction,
                                                  VectorType,
                                                  DiagonalMatrix<VectorType>>;
-        unsigned int                degree = 4;
         OperatorAction              action;
         std::unique_ptr<Polynomial> polynomial;
       };

@@ -8,6 +8,7 @@
 #include <deal.II/lac/diagonal_matrix.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/solvers/integer_entry.h>
 #include <perideal/solvers/preconditioner.h>
 
 #include <cstdlib>
@@ -153,25 +154,20 @@ namespace PeriDEAL
       };
 
 
+      /// ILU(k) fills in up to level k (Ifpack's 'fact: level-of-fill').
+      constexpr IntegerEntry ilu_fill_level = {
+        "Fill level",
+        1,
+        0,
+        10,
+        "Level of fill k of the ILU(k) preconditioner."};
+
       /// Incomplete LU, ILU(k) (Ifpack, on each process).
-      class ILU : public AssembledOnly<TrilinosWrappers::PreconditionILU>
+      class ILU : public WithIntegerEntry<
+                    AssembledOnly<TrilinosWrappers::PreconditionILU>,
+                    ilu_fill_level>
       {
       public:
-        static void
-        declare_parameters(ParameterHandler &prm)
-        {
-          prm.declare_entry("Fill level",
-                            "1",
-                            Patterns::Integer(0, 10),
-                            "Level of fill k of the ILU(k) preconditioner.");
-        }
-
-        void
-        parse_parameters(ParameterHandler &prm) override
-        {
-          fill_level = prm.get_integer("Fill level");
-        }
-
         void
         initialize(const OperatorForm,
                    const PreconditionerSetup &setup) override
@@ -179,12 +175,9 @@ namespace PeriDEAL
           preconditioner =
             std::make_unique<TrilinosWrappers::PreconditionILU>();
           TrilinosWrappers::PreconditionILU::AdditionalData data;
-          data.ilu_fill = fill_level;
+          data.ilu_fill = this->integer_parameter;
           preconditioner->initialize(*setup.matrix, data);
         }
-
-      private:
-        unsigned int fill_level = 1;
       };
 
 
