@@ -12,6 +12,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/bond_operator.h>
+#include <perideal/operators/bond_operator.templates.h>
 
 #include <Epetra_CrsGraph.h>
 #include <Epetra_CrsMatrix.h>
@@ -26,51 +27,6 @@ namespace PeriDEAL
 {
   namespace Operators
   {
-
-    template <int dim>
-    template <typename Function>
-    void
-    BondOperator<dim>::for_each_bond_constants(
-      const unsigned int                 i,
-      const std::ptrdiff_t               base,
-      const std::vector<std::ptrdiff_t> &box_delta,
-      const Function                    &f) const
-    {
-      if (use_lattice)
-        {
-          const std::size_t si = slot[i];
-          double            n[dim];
-          const auto visit = [&](const unsigned int k, const double g_scale) {
-            for (unsigned int d = 0; d < dim; ++d)
-              n[d] = stencil.n[d][k];
-            f(si + stencil.slot_offset[k],
-              base + box_delta[k],
-              n,
-              stencil.g[k] * g_scale,
-              stencil.a[k],
-              stencil.b[k]);
-          };
-          if (on_stencil(i))
-            for (unsigned int k = 0; k < stencil.g.size(); ++k)
-              visit(k, 1.);
-          else
-            for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
-              visit(list_stencil_index[b], list_theta_scale[i]);
-        }
-      else
-        for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
-          {
-            const ListBond &bond = list_bonds[b];
-            f(std::size_t(bond.neighbor_slot),
-              static_cast<std::ptrdiff_t>(bond.neighbor_slot),
-              bond.n,
-              bond.g,
-              bond.a,
-              bond.b);
-          }
-    }
-
-
     template <int dim>
     void
     BondOperator<dim>::assemble(TrilinosWrappers::SparseMatrix  &matrix,
@@ -126,7 +82,7 @@ namespace PeriDEAL
       std::vector<double>         stencil_gn; // g_k n_k, dim per offset
       std::ptrdiff_t              width = 1, centre = 0;
       std::size_t                 n_keys = n;
-      if (use_lattice)
+      if (layout.use_lattice)
         {
           int reach = 0;
           for (const auto &o : lists->stencil())
@@ -159,7 +115,7 @@ namespace PeriDEAL
                         comm);
       const auto node_of_key = [&](const unsigned int   i,
                                    const std::ptrdiff_t key) -> unsigned int {
-        if (!use_lattice)
+        if (!layout.use_lattice)
           return key;
         std::array<std::int64_t, dim> y    = lattice.coordinates(i);
         std::ptrdiff_t                rest = key;
@@ -172,7 +128,7 @@ namespace PeriDEAL
       };
       const auto key_of_node = [&](const unsigned int i,
                                    const unsigned int k) -> std::ptrdiff_t {
-        if (!use_lattice)
+        if (!layout.use_lattice)
           return k;
         const auto    &x = lattice.coordinates(i), &y = lattice.coordinates(k);
         std::ptrdiff_t key = 0, stride = 1;
@@ -184,7 +140,7 @@ namespace PeriDEAL
         return key;
       };
       const auto on_full_stencil = [&](const unsigned int j) {
-        return use_lattice && on_stencil(j);
+        return layout.use_lattice && layout.on_stencil(j);
       };
 
       // The structure of row i: the keys of i, its neighbours and (state-
@@ -193,7 +149,7 @@ namespace PeriDEAL
                                      std::vector<std::uint8_t>  &mark,
                                      std::vector<std::uint32_t> &keys) {
         keys.clear();
-        const std::ptrdiff_t key_i = use_lattice ? centre : i;
+        const std::ptrdiff_t key_i = layout.use_lattice ? centre : i;
         const auto           touch = [&](const std::ptrdiff_t key) {
           if (!mark[key])
             {
@@ -202,25 +158,25 @@ namespace PeriDEAL
             }
         };
         touch(key_i);
-        for_each_bond_constants(i,
-                                key_i,
-                                box_delta,
-                                [&](const std::size_t    slot_j,
-                                    const std::ptrdiff_t key_j,
-                                    const double *,
-                                    const double,
-                                    const double,
-                                    const double) {
-                                  touch(key_j);
-                                  if (!state_based)
-                                    return;
-                                  const unsigned int j = node_of_slot(slot_j);
-                                  if (on_full_stencil(j))
-                                    for (const auto delta : box_delta)
-                                      touch(key_j + delta);
-                                  else
-                                    for_each_bond_constants(
-                                      j,
+        for_each_bond_constants(
+          i,
+          key_i,
+          box_delta,
+          [&](const std::size_t    slot_j,
+              const std::ptrdiff_t key_j,
+              const double *,
+              const double,
+              const double,
+              const double) {
+            touch(key_j);
+            if (!state_based)
+              return;
+            const unsigned int j = layout.node_of_slot(slot_j);
+            if (on_full_stencil(j))
+              for (const auto delta : box_delta)
+                touch(key_j + delta);
+            else
+              for_each_bond_constants(j,
                                       key_j,
                                       box_delta,
                                       [&](const std::size_t,
@@ -229,7 +185,7 @@ namespace PeriDEAL
                                           const double,
                                           const double,
                                           const double) { touch(key_q); });
-                                });
+          });
         std::sort(keys.begin(), keys.end());
         for (const auto key : keys)
           mark[key] = 0;
@@ -240,8 +196,8 @@ namespace PeriDEAL
       //   d theta_p/du_q = g_pq n_pq (q != p), -G_p (q = p).
       const auto row_values = [&](const unsigned int           i,
                                   std::vector<Tensor<2, dim>> &block) {
-        const std::ptrdiff_t key_i = use_lattice ? centre : i;
-        const double         s_i   = s_slot[slot[i]];
+        const std::ptrdiff_t key_i = layout.use_lattice ? centre : i;
+        const double         s_i   = s_slot[layout.slot[i]];
         Tensor<1, dim>       A, G_i;
         for_each_bond_constants(
           i,
@@ -273,7 +229,7 @@ namespace PeriDEAL
                 G_i[p] += g * n_ij[p];
                 t[p] = a_j * n_ij[p];
               }
-            const unsigned int j = node_of_slot(slot_j);
+            const unsigned int j = layout.node_of_slot(slot_j);
             if (on_full_stencil(j))
               for (std::size_t k = 0; k < box_delta.size(); ++k)
                 {
@@ -335,20 +291,21 @@ namespace PeriDEAL
       const auto prescribed_diagonal = [&](const unsigned int i,
                                            const unsigned int r) {
         double       d   = 0;
-        const double s_i = s_slot[slot[i]];
-        for_each_bond_constants(i,
-                                0,
-                                box_delta,
-                                [&](const std::size_t slot_j,
-                                    const std::ptrdiff_t,
-                                    const double *n_ij,
-                                    const double,
-                                    const double,
-                                    const double b) {
-                                  d += std::abs(BondKernel::extension_stiffness(
-                                         b, s_i, s_slot[slot_j])) *
-                                       n_ij[r] * n_ij[r];
-                                });
+        const double s_i = s_slot[layout.slot[i]];
+        for_each_bond_constants(
+          i,
+          0,
+          box_delta,
+          [&](const std::size_t slot_j,
+              const std::ptrdiff_t,
+              const double *n_ij,
+              const double,
+              const double,
+              const double b) {
+            d += std::abs(
+                   BondKernel::extension_stiffness(b, s_i, s_slot[slot_j])) *
+                 n_ij[r] * n_ij[r];
+          });
         return d > 0 ? d : 1.;
       };
 
@@ -357,16 +314,16 @@ namespace PeriDEAL
       std::vector<std::uint8_t>   bulk_row(n_owned, 0);
       std::vector<Tensor<2, dim>> bulk_block;
       std::vector<std::uint32_t>  bulk_keys;
-      if (use_lattice)
+      if (layout.use_lattice)
         {
           int representative = -1;
           for (unsigned int i = 0; i < n_owned; ++i)
-            if (on_stencil(i))
+            if (layout.on_stencil(i))
               {
                 bool all = true;
                 for (unsigned int k = 0; k < stencil.g.size() && all; ++k)
-                  all =
-                    on_stencil(node_of_slot(slot[i] + stencil.slot_offset[k]));
+                  all = layout.on_stencil(layout.node_of_slot(
+                    layout.slot[i] + layout.stencil_offset[k]));
                 bulk_row[i] = all;
                 if (all && representative < 0)
                   representative = i;
@@ -384,7 +341,7 @@ namespace PeriDEAL
       // each; the owned nodes first in the order of the rows (solvers such
       // as AztecOO need the local columns first and matching the rows), then
       // the others.
-      const IndexSet  &owned   = partitioner->locally_owned_range();
+      const IndexSet  &owned   = layout.partitioner->locally_owned_range();
       const Epetra_Map row_map = owned.make_trilinos_map(comm, false);
       std::vector<int> row_of_node(n_owned);
       for (unsigned int i = 0; i < n_owned; ++i)
@@ -406,7 +363,7 @@ namespace PeriDEAL
                                       const double,
                                       const double,
                                       const double) {
-                                    used[node_of_slot(slot_j)] |= flag;
+                                    used[layout.node_of_slot(slot_j)] |= flag;
                                   });
         };
         for (unsigned int i = 0; i < n_owned; ++i)
@@ -444,7 +401,7 @@ namespace PeriDEAL
       std::vector<std::vector<std::uint32_t>> stored_keys(n_owned);
       const auto                              keys_of =
         [&](const unsigned int i) -> const std::vector<std::uint32_t> & {
-        return use_lattice && bulk_row[i] ? bulk_keys : stored_keys[i];
+        return layout.use_lattice && bulk_row[i] ? bulk_keys : stored_keys[i];
       };
       std::vector<int> row_length(owned.n_elements(), 0);
       {
@@ -461,7 +418,7 @@ namespace PeriDEAL
                 int count = 0;
                 if (!fully_prescribed[i])
                   {
-                    if (!(use_lattice && bulk_row[i]))
+                    if (!(layout.use_lattice && bulk_row[i]))
                       row_structure(i, mark, stored_keys[i]);
                     for (const auto key : keys_of(i))
                       {
@@ -575,7 +532,7 @@ namespace PeriDEAL
             scratch.assign(n_keys, Tensor<2, dim>());
           for (unsigned int i = begin; i < end; ++i)
             {
-              const bool  use_bulk = use_lattice && bulk_row[i];
+              const bool  use_bulk = layout.use_lattice && bulk_row[i];
               const auto &keys     = keys_of(i);
               if (!use_bulk && !fully_prescribed[i])
                 row_values(i, scratch);
@@ -634,161 +591,6 @@ namespace PeriDEAL
     }
 
 
-    template <int dim>
-    double
-    BondOperator<dim>::gershgorin_eigenvalue_bound(const double density) const
-    {
-      // Gershgorin's theorem for M^{-1} K, with |K_rc| bounded term by term:
-      // F_i = sum_j n_ij [a_ij (t_i + t_j) + b_ij (s_i + s_j) e_ij], t_i =
-      // s_i theta_i = s_i sum_k g_ik n_ik . (u_k - u_i). The coefficients
-      // of t_i sum in absolute value to A_i = 2 s_i sum_k |g_ik| |n_ik|_1;
-      // row (i, c) of K sums to at most
-      //   sum_j [2 |b_ij| (s_i + s_j) |n_c| |n|_1 + |a_ij| |n_c| A_j]
-      //   + |sum_j a_ij n_c| A_i.
-      const unsigned int  n = nodes->size();
-      std::vector<double> A(n, 0.);
-      if (state_based)
-        for (const unsigned int list : {0u, 1u})
-          {
-            // Theta work list: stencil chunks and list nodes.
-            const auto add = [&](const unsigned int i) {
-              double sum = 0;
-              for_each_bond_constants(i,
-                                      0,
-                                      {},
-                                      [&](const std::size_t,
-                                          const std::ptrdiff_t,
-                                          const double *nv,
-                                          const double  g,
-                                          const double,
-                                          const double) {
-                                        double norm1 = 0;
-                                        for (unsigned int d = 0; d < dim; ++d)
-                                          norm1 += std::abs(nv[d]);
-                                        sum += std::abs(g) * norm1;
-                                      });
-              A[i] = 2 * std::abs(s_slot[slot[i]]) * sum;
-            };
-            if (list == 0)
-              {
-                for (const auto &chunk : theta_chunks)
-                  for (unsigned int l = 0; l < chunk.length; ++l)
-                    add(node_of_slot(chunk.first_slot + l));
-              }
-            else
-              for (const unsigned int i : theta_list_nodes)
-                add(i);
-          }
-      std::vector<std::ptrdiff_t> no_delta(use_lattice ? stencil.g.size() : 0,
-                                           0);
-      double largest = 0;
-      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-        {
-          const double s_i      = s_slot[slot[i]];
-          double       row[dim] = {}, C[dim] = {};
-          for_each_bond_constants(i,
-                                  0,
-                                  no_delta,
-                                  [&](const std::size_t slot_j,
-                                      const std::ptrdiff_t,
-                                      const double *nv,
-                                      const double,
-                                      const double a,
-                                      const double b) {
-                                    const unsigned int j = node_of_slot(slot_j);
-                                    double             norm1 = 0;
-                                    for (unsigned int d = 0; d < dim; ++d)
-                                      norm1 += std::abs(nv[d]);
-                                    const double s_j = s_slot[slot_j];
-                                    for (unsigned int c = 0; c < dim; ++c)
-                                      {
-                                        // |b (s_i + s_j)| = |b| |s_i + s_j|
-                                        // to the bit.
-                                        row[c] +=
-                                          2 *
-                                          std::abs(
-                                            BondKernel::extension_stiffness(
-                                              b, s_i, s_j)) *
-                                          std::abs(nv[c]) * norm1;
-                                        if (state_based)
-                                          {
-                                            row[c] += std::abs(a) *
-                                                      std::abs(nv[c]) * A[j];
-                                            C[c] += a * nv[c];
-                                          }
-                                      }
-                                  });
-          for (unsigned int c = 0; c < dim; ++c)
-            largest = std::max(largest,
-                               (row[c] + std::abs(C[c]) * A[i]) /
-                                 (density * (*nodes)[i].volume()));
-        }
-      return Utilities::MPI::max(largest, nodes->get_communicator());
-    }
-
-
-    template <int dim>
-    double
-    BondOperator<dim>::estimate_largest_eigenvalue(
-      const double       density,
-      const unsigned int n_iterations) const
-    {
-      // Power method on M^{-1} K (K x = -F(x) of the linearised kernel of
-      // the intact bonds, whatever the kinematics of apply()), with the
-      // Rayleigh quotient x.Kx / x.Mx in the M inner product.
-      VectorType x, y;
-      initialize_dof_vector(x);
-      initialize_dof_vector(y);
-      const unsigned int n_owned = nodes->n_owned();
-      for (unsigned int i = 0; i < n_owned; ++i)
-        for (unsigned int c = 0; c < dim; ++c)
-          x.local_element(vector_index[i] + c) =
-            std::sin(1.3 * (*nodes)[i].dofs[c] + 0.2) +
-            0.5 * std::cos(0.37 * (*nodes)[i].dofs[c]);
-      const MPI_Comm comm   = nodes->get_communicator();
-      double         lambda = 0;
-      for (unsigned int it = 0; it < n_iterations; ++it)
-        {
-          x.update_ghost_values();
-          copy_in(x);
-          if (state_based)
-            dilatation_pass();
-          force_pass();
-          double xkx = 0, xmx = 0;
-          for (unsigned int i = 0; i < n_owned; ++i)
-            {
-              const double mass = density * (*nodes)[i].volume();
-              for (unsigned int c = 0; c < dim; ++c)
-                {
-                  const double xi = x.local_element(vector_index[i] + c);
-                  const double ky = -f_slot[c][slot[i]];
-                  xkx += xi * ky;
-                  xmx += xi * mass * xi;
-                  y.local_element(vector_index[i] + c) = ky / mass;
-                }
-            }
-          xkx    = Utilities::MPI::sum(xkx, comm);
-          xmx    = Utilities::MPI::sum(xmx, comm);
-          lambda = xmx > 0 ? xkx / xmx : 0;
-          // Normalise in the M norm.
-          double ymy = 0;
-          for (unsigned int i = 0; i < n_owned; ++i)
-            for (unsigned int c = 0; c < dim; ++c)
-              ymy += density * (*nodes)[i].volume() *
-                     std::pow(y.local_element(vector_index[i] + c), 2);
-          ymy = Utilities::MPI::sum(ymy, comm);
-          if (!(ymy > 0))
-            break;
-          const double scale = 1. / std::sqrt(ymy);
-          for (unsigned int i = 0; i < n_owned; ++i)
-            for (unsigned int c = 0; c < dim; ++c)
-              x.local_element(vector_index[i] + c) =
-                y.local_element(vector_index[i] + c) * scale;
-        }
-      return lambda;
-    }
-
-
     template void
     BondOperator<2>::assemble(TrilinosWrappers::SparseMatrix &,
                               const AffineConstraints<double> *,
@@ -797,15 +599,5 @@ namespace PeriDEAL
     BondOperator<3>::assemble(TrilinosWrappers::SparseMatrix &,
                               const AffineConstraints<double> *,
                               TrilinosWrappers::MPI::Vector *) const;
-    template double
-    BondOperator<2>::gershgorin_eigenvalue_bound(const double) const;
-    template double
-    BondOperator<3>::gershgorin_eigenvalue_bound(const double) const;
-    template double
-    BondOperator<2>::estimate_largest_eigenvalue(const double,
-                                                 const unsigned int) const;
-    template double
-    BondOperator<3>::estimate_largest_eigenvalue(const double,
-                                                 const unsigned int) const;
   } // namespace Operators
 } // namespace PeriDEAL

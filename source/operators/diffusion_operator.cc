@@ -10,15 +10,6 @@ namespace PeriDEAL
 {
   namespace Operators
   {
-    namespace
-    {
-      // Work items per task of the thread pool: runs of the stencil loop
-      // and nodes of the list loop.
-      using LoopLayout::chunk_grain;
-      using LoopLayout::node_grain;
-    } // namespace
-
-
     template <int dim>
     void
     DiffusionOperator<dim>::reinit(
@@ -27,57 +18,16 @@ namespace PeriDEAL
       const Models::DiffusionKernel           &kernel_,
       const Discretization::BondState<dim>    *state_)
     {
-      nodes                   = &nodes_;
-      lists                   = &lists_;
-      kernel                  = &kernel_;
-      bond_state              = state_;
-      const unsigned int n    = nodes->size();
-      const MPI_Comm     comm = nodes->get_communicator();
-
-      // One value per node: the global index dofs[0] / dim of the
-      // FE_DGQ(0)^dim numbering (the dim DoFs of a cell are consecutive).
-      bool consecutive = true;
-      for (unsigned int i = 0; i < n && consecutive; ++i)
-        {
-          const auto &dofs = (*nodes)[i].dofs;
-          consecutive      = dofs[0] % dim == 0;
-          for (unsigned int c = 1; c < dim; ++c)
-            consecutive = consecutive && dofs[c] == dofs[0] + c;
-        }
-      AssertThrow(Utilities::MPI::min(consecutive ? 1 : 0, comm) == 1,
-                  ExcMessage("DiffusionOperator needs the dim DoFs of a node "
-                             "numbered consecutively from a multiple of dim "
-                             "(FESystem of FE_DGQ(0) without renumbering)."));
-      {
-        const types::global_dof_index n_global =
-          nodes->relevant_dofs().size() / dim;
-        IndexSet owned(n_global), relevant(n_global);
-        std::vector<types::global_dof_index> indices;
-        for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-          indices.push_back((*nodes)[i].dofs[0] / dim);
-        std::sort(indices.begin(), indices.end());
-        owned.add_indices(indices.begin(), indices.end());
-        owned.compress();
-        indices.clear();
-        for (unsigned int i = 0; i < n; ++i)
-          indices.push_back((*nodes)[i].dofs[0] / dim);
-        std::sort(indices.begin(), indices.end());
-        relevant.add_indices(indices.begin(), indices.end());
-        relevant.compress();
-        partitioner =
-          std::make_shared<Utilities::MPI::Partitioner>(owned, relevant, comm);
-      }
-      node_index.resize(n);
-      for (unsigned int i = 0; i < n; ++i)
-        node_index[i] = partitioner->global_to_local((*nodes)[i].dofs[0] / dim);
-
-      LoopLayout::choose_slots(*lists, n, use_lattice, n_slots, slot);
+      nodes      = &nodes_;
+      lists      = &lists_;
+      kernel     = &kernel_;
+      bond_state = state_;
+      layout.reinit(nodes_, lists_, state_, true, 1, "DiffusionOperator");
       const auto &lattice = lists->lattice();
 
-      stencil_offset.clear();
       stencil_mu.clear();
       stencil_sum = 0;
-      if (use_lattice)
+      if (layout.use_lattice)
         {
           const double h      = lattice.spacing();
           const double volume = std::pow(h, dim);
@@ -88,7 +38,6 @@ namespace PeriDEAL
                 r2 += double(o.offset[d]) * o.offset[d];
               const double mu =
                 kernel->conductance(std::sqrt(r2) * h) * o.beta * volume;
-              stencil_offset.push_back(lattice.slot_offset(o.offset));
               stencil_mu.push_back(mu);
               stencil_sum += mu;
             }
@@ -99,14 +48,14 @@ namespace PeriDEAL
       stored_bonds.clear();
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
-          if (!(use_lattice && lists->has_full_stencil(i)))
+          if (!(layout.use_lattice && lists->has_full_stencil(i)))
             {
               const Point<dim> &x = (*nodes)[i].location;
               for_each_bond(
                 i,
                 [&](const unsigned int, const unsigned int j, const double w) {
                   stored_bonds.push_back(
-                    {static_cast<unsigned int>(slot[j]),
+                    {static_cast<unsigned int>(layout.slot[j]),
                      0,
                      kernel->conductance(x.distance((*nodes)[j].location)) * w,
                      0.});
@@ -117,9 +66,9 @@ namespace PeriDEAL
       with_phases = false;
       n_phases    = 1;
       factor      = {1.};
-      phase_slot.assign(n_slots, 0);
-      c_slot.resize_fast(n_slots);
-      r_slot.resize_fast(n_slots);
+      phase_slot.assign(layout.n_slots, 0);
+      c_slot.resize_fast(layout.n_slots);
+      r_slot.resize_fast(layout.n_slots);
       std::fill(c_slot.begin(), c_slot.end(), 0.);
       std::fill(r_slot.begin(), r_slot.end(), 0.);
       build_work_lists();
@@ -185,11 +134,11 @@ namespace PeriDEAL
       factor      = factor_;
       gate        = gate_;
       rate        = rate_;
-      phase_slot.assign(n_slots, 0);
+      phase_slot.assign(layout.n_slots, 0);
       for (unsigned int i = 0; i < nodes->size(); ++i)
         {
           AssertThrow(phase_of_node[i] < n_phases, ExcInternalError());
-          phase_slot[slot[i]] = phase_of_node[i];
+          phase_slot[layout.slot[i]] = phase_of_node[i];
         }
       build_work_lists();
     }
@@ -203,35 +152,37 @@ namespace PeriDEAL
       // Bulk slots with their phase (runs of one phase only).
       std::vector<std::pair<std::size_t, unsigned char>> bulk_slots;
       zero_slots.clear();
-      list_nodes.clear();
-      list_first.assign(1, 0);
+      work().list_nodes.clear();
+      list_bond_first.assign(1, 0);
       list_bonds.clear();
       list_sum.clear();
-      bond_visits           = 0;
+      layout.bond_visits    = 0;
       any_special           = false;
       largest_geometric_sum = 0;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
-          const unsigned char p = phase_slot[slot[i]];
+          const unsigned char p = phase_slot[layout.slot[i]];
           const bool          intact =
             bond_state == nullptr || !bond_state->any_broken(i);
-          if (use_lattice && lists->has_full_stencil(i) && intact)
+          if (layout.use_lattice && lists->has_full_stencil(i) && intact)
             {
               largest_geometric_sum =
                 std::max(largest_geometric_sum, stencil_sum);
               bool uniform = true;
               if (with_phases)
-                for (std::size_t k = 0; k < stencil_offset.size() && uniform;
+                for (std::size_t k = 0;
+                     k < layout.stencil_offset.size() && uniform;
                      ++k)
-                  uniform = phase_slot[slot[i] + stencil_offset[k]] == p;
+                  uniform =
+                    phase_slot[layout.slot[i] + layout.stencil_offset[k]] == p;
               if (uniform)
                 {
                   if (factor[p * n_phases + p] == 0)
-                    zero_slots.push_back(slot[i]);
+                    zero_slots.push_back(layout.slot[i]);
                   else
                     {
-                      bulk_slots.emplace_back(slot[i], p);
-                      bond_visits += stencil_mu.size();
+                      bulk_slots.emplace_back(layout.slot[i], p);
+                      layout.bond_visits += stencil_mu.size();
                     }
                   continue;
                 }
@@ -257,31 +208,39 @@ namespace PeriDEAL
               {static_cast<unsigned int>(slot_j), gated, f * mu, r * mu});
             sum += f * mu;
           };
-          if (use_lattice && lists->has_full_stencil(i))
+          if (layout.use_lattice && lists->has_full_stencil(i))
             for (unsigned int k = 0; k < stencil_mu.size(); ++k)
-              add(k, slot[i] + stencil_offset[k], stencil_mu[k]);
+              add(k, layout.slot[i] + layout.stencil_offset[k], stencil_mu[k]);
           else
             for (std::size_t b = stored_first[i]; b < stored_first[i + 1]; ++b)
               add(b - stored_first[i],
                   stored_bonds[b].slot,
                   stored_bonds[b].mu);
           largest_geometric_sum = std::max(largest_geometric_sum, geometric);
-          list_nodes.push_back(i);
-          list_first.push_back(list_bonds.size());
+          work().list_nodes.push_back(i);
+          list_bond_first.push_back(list_bonds.size());
           list_sum.push_back(sum);
-          bond_visits += list_first.back() - list_first[list_first.size() - 2];
+          layout.bond_visits += list_bond_first.back() -
+                                list_bond_first[list_bond_first.size() - 2];
         }
-      n_owned_stencil = bulk_slots.size() + zero_slots.size();
+      layout.n_owned_stencil = bulk_slots.size() + zero_slots.size();
       std::sort(bulk_slots.begin(), bulk_slots.end());
-      chunks.clear();
-      for (const auto &[s, p] : bulk_slots)
-        if (!chunks.empty() &&
-            chunks.back().first_slot + chunks.back().length == s &&
-            chunks.back().length < chunk_size &&
-            phase_slot[chunks.back().first_slot] == p)
-          ++chunks.back().length;
-        else
-          chunks.push_back({s, 1, factor[p * n_phases + p]});
+      std::vector<std::size_t> sorted_slots;
+      for (const auto &bulk : bulk_slots)
+        sorted_slots.push_back(bulk.first);
+      // Chunks of one phase only, scaled by its factor.
+      LoopLayout<dim>::cut_into_chunks(
+        sorted_slots,
+        [&](const Chunk &chunk, const std::size_t s) {
+          return phase_slot[chunk.first_slot] == phase_slot[s];
+        },
+        work().chunks);
+      chunk_factor.clear();
+      for (const Chunk &chunk : work().chunks)
+        {
+          const unsigned char p = phase_slot[chunk.first_slot];
+          chunk_factor.push_back(factor[p * n_phases + p]);
+        }
     }
 
 
@@ -289,7 +248,7 @@ namespace PeriDEAL
     const std::shared_ptr<const Utilities::MPI::Partitioner> &
     DiffusionOperator<dim>::get_partitioner() const
     {
-      return partitioner;
+      return layout.partitioner;
     }
 
 
@@ -297,7 +256,7 @@ namespace PeriDEAL
     void
     DiffusionOperator<dim>::initialize_vector(VectorType &v) const
     {
-      v.reinit(partitioner);
+      v.reinit(layout.partitioner);
     }
 
 
@@ -306,14 +265,9 @@ namespace PeriDEAL
     DiffusionOperator<dim>::copy_in(const VectorType &concentration) const
     {
       const double *values = concentration.begin();
-      parallel::apply_to_subranges(
-        0u,
-        static_cast<unsigned int>(nodes->size()),
-        [&](const unsigned int begin, const unsigned int end) {
-          for (unsigned int i = begin; i < end; ++i)
-            c_slot[slot[i]] = values[node_index[i]];
-        },
-        node_grain);
+      layout.for_each_node(nodes->size(), [&](const unsigned int i) {
+        c_slot[layout.slot[i]] = values[layout.vector_index[i]];
+      });
     }
 
 
@@ -328,46 +282,51 @@ namespace PeriDEAL
 
       // The uniform bulk: sum_k mu_k (c_{s+o_k} - c_s), vectorised over a
       // run of consecutive slots, offsets outside.
-      parallel::apply_to_subranges(
-        std::size_t(0),
-        chunks.size(),
-        [&](const std::size_t begin, const std::size_t end) {
-          alignas(64) double sum[chunk_size];
-          for (std::size_t q = begin; q < end; ++q)
-            {
-              const std::size_t  s0  = chunks[q].first_slot;
-              const unsigned int len = chunks[q].length;
-              const double      *ci  = c + s0;
-              for (unsigned int l = 0; l < len; ++l)
-                sum[l] = 0;
-              for (std::size_t k = 0; k < n_offsets; ++k)
-                {
-                  const double  mu = stencil_mu[k];
-                  const double *cj = ci + stencil_offset[k];
+      const auto &chunks = work().chunks;
+      layout.for_chunk_ranges(chunks.size(),
+                              [&](const std::size_t begin,
+                                  const std::size_t end) {
+                                alignas(64) double sum[chunk_size];
+                                for (std::size_t q = begin; q < end; ++q)
+                                  {
+                                    const std::size_t s0 = chunks[q].first_slot;
+                                    const unsigned int len = chunks[q].length;
+                                    const double      *ci  = c + s0;
+                                    for (unsigned int l = 0; l < len; ++l)
+                                      sum[l] = 0;
+                                    for (std::size_t k = 0; k < n_offsets; ++k)
+                                      {
+                                        const double  mu = stencil_mu[k];
+                                        const double *cj =
+                                          ci + layout.stencil_offset[k];
 #pragma omp simd
-                  for (unsigned int l = 0; l < len; ++l)
-                    sum[l] += mu * (cj[l] - ci[l]);
-                }
-              for (unsigned int l = 0; l < len; ++l)
-                r_slot[s0 + l] = chunks[q].factor * sum[l];
-            }
-        },
-        chunk_grain);
+                                        for (unsigned int l = 0; l < len; ++l)
+                                          sum[l] += mu * (cj[l] - ci[l]);
+                                      }
+                                    for (unsigned int l = 0; l < len; ++l)
+                                      r_slot[s0 + l] = chunk_factor[q] * sum[l];
+                                  }
+                              });
 
       // Nodes with lists.
+      const auto &list_nodes = work().list_nodes;
       parallel::apply_to_subranges(
         std::size_t(0),
         list_nodes.size(),
         [&](const std::size_t begin, const std::size_t end) {
           for (std::size_t q = begin; q < end; ++q)
             {
-              const double ci  = c[slot[list_nodes[q]]];
+              const double ci  = c[layout.slot[list_nodes[q]]];
               double       sum = 0;
               if (!any_special)
-                for (std::size_t b = list_first[q]; b < list_first[q + 1]; ++b)
+                for (std::size_t b = list_bond_first[q];
+                     b < list_bond_first[q + 1];
+                     ++b)
                   sum += list_bonds[b].mu * (c[list_bonds[b].slot] - ci);
               else
-                for (std::size_t b = list_first[q]; b < list_first[q + 1]; ++b)
+                for (std::size_t b = list_bond_first[q];
+                     b < list_bond_first[q + 1];
+                     ++b)
                   {
                     const ListBond &bond = list_bonds[b];
                     const double    cj   = c[bond.slot];
@@ -377,23 +336,18 @@ namespace PeriDEAL
                       continue;
                     sum += bond.mu * (cj - ci) + bond.flow;
                   }
-              r_slot[slot[list_nodes[q]]] = sum;
+              r_slot[layout.slot[list_nodes[q]]] = sum;
             }
         },
-        node_grain);
+        LoopLayout<dim>::node_grain);
 
       for (const auto s : zero_slots)
         r_slot[s] = 0;
 
       double *out = result.begin();
-      parallel::apply_to_subranges(
-        0u,
-        nodes->n_owned(),
-        [&](const unsigned int begin, const unsigned int end) {
-          for (unsigned int i = begin; i < end; ++i)
-            out[node_index[i]] = r_slot[slot[i]];
-        },
-        node_grain);
+      layout.for_each_node(nodes->n_owned(), [&](const unsigned int i) {
+        out[layout.vector_index[i]] = r_slot[layout.slot[i]];
+      });
     }
 
 
@@ -403,12 +357,13 @@ namespace PeriDEAL
     {
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
-          const unsigned char p = phase_slot[slot[i]];
-          sums.local_element(node_index[i]) =
+          const unsigned char p = phase_slot[layout.slot[i]];
+          sums.local_element(layout.vector_index[i]) =
             stencil_sum * factor[p * n_phases + p];
         }
-      for (std::size_t q = 0; q < list_nodes.size(); ++q)
-        sums.local_element(node_index[list_nodes[q]]) = list_sum[q];
+      for (std::size_t q = 0; q < work().list_nodes.size(); ++q)
+        sums.local_element(layout.vector_index[work().list_nodes[q]]) =
+          list_sum[q];
     }
 
 
@@ -448,14 +403,14 @@ namespace PeriDEAL
         {
           const auto g = (*nodes)[i].dofs[0] / dim;
           double     v = 1. + 0.5 * std::sin(1.7 * double(g));
-          if (use_lattice)
+          if (layout.use_lattice)
             {
               std::int64_t parity = 0;
               for (const auto c : lists->lattice().coordinates(i))
                 parity += c;
               v *= (parity % 2 == 0 ? 1. : -1.);
             }
-          x.local_element(node_index[i]) = v;
+          x.local_element(layout.vector_index[i]) = v;
         }
       double lambda = 0;
       for (unsigned int it = 0; it < n_iterations; ++it)
@@ -478,7 +433,7 @@ namespace PeriDEAL
     unsigned int
     DiffusionOperator<dim>::n_stencil_nodes() const
     {
-      return n_owned_stencil;
+      return layout.n_owned_stencil;
     }
 
 
@@ -486,7 +441,7 @@ namespace PeriDEAL
     unsigned int
     DiffusionOperator<dim>::n_list_nodes() const
     {
-      return list_nodes.size();
+      return work().list_nodes.size();
     }
 
 
@@ -494,7 +449,7 @@ namespace PeriDEAL
     std::size_t
     DiffusionOperator<dim>::n_bond_visits() const
     {
-      return bond_visits;
+      return layout.bond_visits;
     }
 
 
@@ -502,13 +457,10 @@ namespace PeriDEAL
     std::size_t
     DiffusionOperator<dim>::memory_consumption() const
     {
-      return sizeof(*this) + node_index.capacity() * sizeof(unsigned int) +
-             slot.capacity() * sizeof(std::size_t) +
-             stencil_offset.capacity() * sizeof(std::ptrdiff_t) +
+      return sizeof(*this) + layout.memory_consumption() +
              stencil_mu.capacity() * sizeof(double) +
-             chunks.capacity() * sizeof(Chunk) +
-             list_nodes.capacity() * sizeof(unsigned int) +
-             list_first.capacity() * sizeof(std::size_t) +
+             chunk_factor.capacity() * sizeof(double) +
+             list_bond_first.capacity() * sizeof(std::size_t) +
              list_bonds.capacity() * sizeof(ListBond) +
              list_sum.capacity() * sizeof(double) +
              stored_first.capacity() * sizeof(std::size_t) +

@@ -263,36 +263,15 @@ namespace PeriDEAL
       memory_consumption() const;
 
       /// Slots per run of the vectorised stencil loop.
-      static constexpr unsigned int chunk_size = LoopLayout::chunk_size;
+      static constexpr unsigned int chunk_size = LoopLayout<dim>::chunk_size;
 
     private:
       /// A bond that reached its critical stretch: local node indices.
       using ExceededBond = std::pair<unsigned int, unsigned int>;
-
-      /// A run of consecutive slots of bulk nodes.
-      struct Chunk
-      {
-        std::size_t  first_slot;
-        unsigned int length;
-      };
-
-      /**
-       * A run of consecutive slots of intact nodes off the shared stencil
-       * (near the surface) whose bonds are the same set of stencil
-       * offsets, the head's list_stencil_index[index_first, index_first +
-       * n_index): evaluated like a Chunk, vectorised over the slots, but
-       * over those offsets only, instead of one gather loop per node.
-       * Lists are written in increasing stencil order, so equal sets are
-       * equal segments, and a node of a run sums its bonds in the same
-       * order whichever node heads the run (the partition decides that).
-       */
-      struct Run
-      {
-        std::size_t  first_slot;
-        unsigned int length;
-        std::size_t  index_first;
-        unsigned int n_index;
-      };
+      using Chunk        = typename LoopLayout<dim>::Chunk;
+      using Run          = typename LoopLayout<dim>::Run;
+      using Block        = typename LoopLayout<dim>::Block;
+      using Pass         = typename LoopLayout<dim>::Pass;
 
       /// One bond of a node outside the shared stencil.
       struct ListBond
@@ -305,10 +284,10 @@ namespace PeriDEAL
         double       b; // V_i w beta(r)
       };
 
-      /// The shared stencil: one entry per offset.
+      /// The shared stencil's constants: one entry per offset (the slot
+      /// offsets are the layout's).
       struct Stencil
       {
-        std::vector<std::ptrdiff_t>          slot_offset;
         std::array<std::vector<double>, dim> n, xi;
         std::vector<double>                  r, inv_r;
         std::vector<double>                  g, a, b;
@@ -321,59 +300,24 @@ namespace PeriDEAL
       const Discretization::BondState<dim>    *bond_state   = nullptr;
       double                                   horizon      = 0;
       bool                                     state_based  = true;
-      bool                                     use_lattice  = false;
       bool                                     finite       = false;
       bool                                     with_failure = false;
 
-      std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
-      std::vector<unsigned int>                          vector_index;
-      std::vector<std::size_t>                           slot;
-      std::size_t                                        n_slots = 0;
-      std::vector<double>                                m;
+      /// Slots, chunks, runs, lists and masks: the loops' layout, with two
+      /// passes (theta_work(): the dilatations, force_work(): the forces).
+      LoopLayout<dim>     layout;
+      std::vector<double> m;
       double  stencil_weighted_volume = 0; // m of a full neighbourhood
       Stencil stencil;
 
-      std::vector<Chunk>        theta_chunks, force_chunks;
-      std::vector<unsigned int> theta_list_nodes, force_list_nodes;
-      // Segment [list_first[i], list_end[i]) of the bonds of node i in
-      // list_bonds or list_stencil_index; is_listed[i]: node i has one.
-      std::vector<std::size_t> list_first, list_end;
-      std::vector<char>        is_listed;
-      // Off a lattice: one ListBond per bond. On a lattice the bonds of a
-      // node off the shared stencil are a subset of the stencil: the
-      // stencil index of each (2 bytes a bond), the constants shared.
-      std::vector<ListBond>      list_bonds;
-      std::vector<std::uint16_t> list_stencil_index;
-      // Per node with a stored list on the lattice: the stencil index of
-      // every bond (broken or not), in bond order.
-      std::vector<std::uint16_t> bond_stencil_index;
-      std::vector<std::size_t>   bond_stencil_first;
-      // Per node with a stored list on the lattice: its bonds' numbers in
-      // increasing stencil index (the order lists are written in).
-      std::vector<std::uint16_t> bond_in_stencil_order;
-      std::vector<double>        list_theta_scale; // m_0 / m_i per node
-      // The list nodes of the nonlinear passes split into runs (Run) and
-      // the rest, evaluated node by node with gathers. run_eligible[i]:
-      // node i's neighbourhood looks the same one slot further along the
-      // slot axis wherever both are inside its horizon (a node-local test,
-      // so every partition treats a node alike); it joins a run while it
-      // has no broken bond. theta_run_factor: s_i m_0 / m_i per slot.
-      std::vector<Run>          theta_runs, force_runs;
-      std::vector<unsigned int> theta_gather_nodes, force_gather_nodes;
-      std::vector<char>         run_eligible;
-      AlignedVector<double>     theta_run_factor;
-      // The nonlinear passes on the lattice run every node with the full
-      // stencil in chunks, intact or not (full_*_chunks, fixed): the bonds
-      // that broke are masked by one bit per (stencil offset, slot),
-      // stored per block of 64 slots for the blocks that hold a node with
-      // a broken bond (block_mask_first[b]: its first word in mask_words,
-      // n_offsets words, or -1).
-      std::vector<Chunk>         full_theta_chunks, full_force_chunks;
-      std::vector<std::int64_t>  block_mask_first;
-      std::vector<std::uint64_t> mask_words;
-      std::vector<unsigned int>  owned_slots;
-      unsigned int               n_owned_stencil = 0;
-      std::size_t                bond_visits     = 0;
+      // Off a lattice: one ListBond per bond, in the layout's list
+      // segments. On a lattice the bonds of a node off the shared stencil
+      // are a subset of the stencil (the layout's list_stencil_index), the
+      // constants shared.
+      std::vector<ListBond> list_bonds;
+      std::vector<double>   list_theta_scale; // m_0 / m_i per node
+      // s_i m_0 / m_i per slot, for the runs of the dilatation pass.
+      AlignedVector<double> theta_run_factor;
 
       // Scratch: displacement, force, s * theta and s per slot; the
       // critical stretch per slot (with failure).
@@ -388,9 +332,39 @@ namespace PeriDEAL
       mutable std::vector<ExceededBond> exceeded;
       mutable std::mutex                exceeded_mutex;
 
-      /// Whether node i is evaluated with the shared stencil.
+      /// The work of the dilatation pass.
+      Pass &
+      theta_work()
+      {
+        return layout.pass[0];
+      }
+
+      const Pass &
+      theta_work() const
+      {
+        return layout.pass[0];
+      }
+
+      /// The work of the force pass.
+      Pass &
+      force_work()
+      {
+        return layout.pass[1];
+      }
+
+      const Pass &
+      force_work() const
+      {
+        return layout.pass[1];
+      }
+
+      /// Whether node i needs the dilatation pass (state-based models: every
+      /// node with a list).
       bool
-      on_stencil(const unsigned int i) const;
+      needs_dilatation(const unsigned int i) const
+      {
+        return state_based && lists->has_list(i);
+      }
 
       /// Call f(j, w_ij) for every intact bond of node i.
       template <typename Function>
@@ -412,33 +386,14 @@ namespace PeriDEAL
                               const std::vector<std::ptrdiff_t> &box_delta,
                               const Function                    &f) const;
 
-      /// The node in slot @p s.
-      unsigned int
-      node_of_slot(const std::size_t s) const;
-
+      /// Build the lists, chunks, runs and masks of both passes from the
+      /// bond state (reinit(), update_bond_state()).
       void
       build_work_lists();
 
-      /// Split the list nodes into runs and gather nodes (after every
-      /// change of the work lists).
+      /// The chunks of the intact stencil nodes of both passes.
       void
-      make_runs();
-
-      /// Which list nodes may join runs (once, at reinit()).
-      void
-      find_run_eligible_nodes();
-
-      /// Runs of consecutive slots of the stencil nodes that need the
-      /// dilatation pass (@p for_theta) or the force pass; with
-      /// @p with_broken also the nodes of the full stencil with broken bonds.
-      void
-      make_chunks(const bool          for_theta,
-                  std::vector<Chunk> &chunks,
-                  const bool          with_broken = false) const;
-
-      /// Set the mask bits of the broken bonds of node @p i (full stencil).
-      void
-      set_broken_bits(const unsigned int i);
+      make_stencil_chunks();
 
       /**
        * After bonds of the nodes @p changed broke: shrink their list
@@ -481,16 +436,6 @@ namespace PeriDEAL
       void
       record_exceeded(const std::vector<ExceededBond> &found) const;
     };
-
-
-    template <int dim>
-    inline unsigned int
-    BondOperator<dim>::node_of_slot(const std::size_t s) const
-    {
-      return use_lattice ?
-               static_cast<unsigned int>(lists->lattice().node_at_slot(s)) :
-               static_cast<unsigned int>(s);
-    }
   } // namespace Operators
 } // namespace PeriDEAL
 

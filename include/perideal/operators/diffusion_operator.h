@@ -106,7 +106,7 @@ namespace PeriDEAL
       unsigned int
       vector_index(const unsigned int i) const
       {
-        return node_index[i];
+        return layout.vector_index[i];
       }
 
       /**
@@ -146,7 +146,7 @@ namespace PeriDEAL
       bool
       is_symmetric() const
       {
-        return use_lattice;
+        return layout.use_lattice;
       }
 
       /// Owned nodes evaluated with the shared stencil.
@@ -166,15 +166,10 @@ namespace PeriDEAL
       memory_consumption() const;
 
       /// Slots per run of the vectorised stencil loop.
-      static constexpr unsigned int chunk_size = LoopLayout::chunk_size;
+      static constexpr unsigned int chunk_size = LoopLayout<dim>::chunk_size;
 
     private:
-      struct Chunk
-      {
-        std::size_t  first_slot;
-        unsigned int length;
-        double       factor;
-      };
+      using Chunk = typename LoopLayout<dim>::Chunk;
 
       struct ListBond
       {
@@ -193,24 +188,34 @@ namespace PeriDEAL
       void
       build_work_lists();
 
+      /// The work of the one pass.
+      typename LoopLayout<dim>::Pass &
+      work()
+      {
+        return layout.pass[0];
+      }
+
+      const typename LoopLayout<dim>::Pass &
+      work() const
+      {
+        return layout.pass[0];
+      }
+
       void
       copy_in(const VectorType &concentration) const;
 
-      const Discretization::NodeSet<dim>      *nodes       = nullptr;
-      const Discretization::NeighborList<dim> *lists       = nullptr;
-      const Models::DiffusionKernel           *kernel      = nullptr;
-      const Discretization::BondState<dim>    *bond_state  = nullptr;
-      bool                                     use_lattice = false;
+      const Discretization::NodeSet<dim>      *nodes      = nullptr;
+      const Discretization::NeighborList<dim> *lists      = nullptr;
+      const Models::DiffusionKernel           *kernel     = nullptr;
+      const Discretization::BondState<dim>    *bond_state = nullptr;
 
-      std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
-      std::vector<unsigned int>                          node_index;
-      std::vector<std::size_t>                           slot;
-      std::size_t                                        n_slots = 0;
+      /// Slots, chunks and list nodes: the loop's layout (one pass, work()).
+      LoopLayout<dim> layout;
 
-      // The shared stencil.
-      std::vector<std::ptrdiff_t> stencil_offset;
-      std::vector<double>         stencil_mu;
-      double                      stencil_sum = 0;
+      // The shared stencil's conductances (its slot offsets are the
+      // layout's).
+      std::vector<double> stencil_mu;
+      double              stencil_sum = 0;
 
       // Phases per slot, the factor table and the gate.
       std::vector<unsigned char> phase_slot;
@@ -221,20 +226,20 @@ namespace PeriDEAL
       bool                       with_phases = false, any_special = false;
       double                     largest_geometric_sum = 0;
 
-      std::vector<Chunk>       chunks;
+      // The phase factor of each chunk of work().chunks.
+      std::vector<double>      chunk_factor;
       std::vector<std::size_t> zero_slots;
       // Owned nodes off the shared stencil's neighbourhood (a stored list,
       // or any node off a lattice): the slot and conductance of each bond,
       // in bond order, computed once, so that re-sorting after phase
       // changes or broken bonds evaluates no kernel and looks nothing up.
-      std::vector<std::size_t>  stored_first; // per owned node, size + 1
-      std::vector<ListBond>     stored_bonds;
-      std::vector<unsigned int> list_nodes;
-      std::vector<std::size_t>  list_first; // per list node, size + 1
-      std::vector<ListBond>     list_bonds;
-      std::vector<double>       list_sum;
-      unsigned int              n_owned_stencil = 0;
-      std::size_t               bond_visits     = 0;
+      std::vector<std::size_t> stored_first; // per owned node, size + 1
+      std::vector<ListBond>    stored_bonds;
+      // The bonds of the q-th list node of work() (in bond order):
+      // [list_bond_first[q], list_bond_first[q + 1]) of list_bonds.
+      std::vector<std::size_t> list_bond_first;
+      std::vector<ListBond>    list_bonds;
+      std::vector<double>      list_sum;
 
       mutable AlignedVector<double> c_slot, r_slot;
     };

@@ -1,0 +1,462 @@
+// BondOperator's linear passes (small-strain kinematics, no failure): the
+// dilatations and forces of apply(), the energy of a force evaluation and
+// the exact diagonal of the stiffness, compiled with the bond-loop flags.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+
+#include <perideal/operators/bond/bond_kernel.h>
+#include <perideal/operators/bond_operator.h>
+#include <perideal/operators/bond_operator.templates.h>
+
+#include <algorithm>
+#include <array>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    template <int dim>
+    void
+    BondOperator<dim>::copy_in(const VectorType &displacement) const
+    {
+      const double *values = displacement.begin();
+      layout.for_each_node(nodes->size(), [&](const unsigned int i) {
+        for (unsigned int c = 0; c < dim; ++c)
+          u_slot[c][layout.slot[i]] = values[layout.vector_index[i] + c];
+      });
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::dilatation_pass() const
+    {
+      const std::size_t n_offsets = layout.stencil_offset.size();
+      // The uniform bulk: theta_i = sum_k g_k n_k . (u_{i+k} - u_i),
+      // vectorised over a run of consecutive slots.
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        theta_work().chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double theta[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = theta_work().chunks[c].first_slot;
+              const unsigned int len = theta_work().chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
+                theta[l] = 0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = layout.stencil_offset[k];
+                  double               gn[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    gn[d] = stencil.g[k] * stencil.n[d][k];
+                  const double *ui[dim], *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      ui[d] = u_slot[d].data() + s0;
+                      uj[d] = ui[d] + o;
+                    }
+#pragma omp simd
+                  for (unsigned int l = 0; l < len; ++l)
+                    {
+                      // g e with g folded into the direction.
+                      theta[l] += BondKernel::linear_extension_of_lane<dim>(gn,
+                                                                            uj,
+                                                                            ui,
+                                                                            l);
+                    }
+                }
+              const double s = stencil.node_factor;
+              for (unsigned int l = 0; l < len; ++l)
+                t_slot[s0 + l] = s * theta[l];
+            }
+        },
+        LoopLayout<dim>::chunk_grain);
+
+      layout.for_each_node_of(
+        theta_work().list_nodes,
+        [&](const unsigned int i, const std::size_t si) {
+          double theta = 0;
+          if (layout.use_lattice)
+            {
+              for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
+                   ++b)
+                {
+                  const unsigned int k  = layout.list_stencil_index[b];
+                  const std::size_t  sj = si + layout.stencil_offset[k];
+                  const double       e  = BondKernel::linear_extension<dim>(
+                    [&](const unsigned int d) { return stencil.n[d][k]; },
+                    [&](const unsigned int d) {
+                      return u_slot[d][sj] - u_slot[d][si];
+                    });
+                  theta += stencil.g[k] * e;
+                }
+              theta *= list_theta_scale[i];
+            }
+          else
+            for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
+                 ++b)
+              {
+                const ListBond   &bond = list_bonds[b];
+                const std::size_t sj   = bond.neighbor_slot;
+                const double      e =
+                  BondKernel::linear_extension<dim>(bond.n,
+                                                    [&](const unsigned int d) {
+                                                      return u_slot[d][sj] -
+                                                             u_slot[d][si];
+                                                    });
+                theta += bond.g * e;
+              }
+          t_slot[si] = s_slot[si] * theta;
+        });
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::force_pass() const
+    {
+      const std::size_t n_offsets = layout.stencil_offset.size();
+      const bool        sb        = state_based;
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        force_work().chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double force[dim][chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = force_work().chunks[c].first_slot;
+              const unsigned int len = force_work().chunks[c].length;
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  force[d][l] = 0;
+              const double *ui[dim];
+              for (unsigned int d = 0; d < dim; ++d)
+                ui[d] = u_slot[d].data() + s0;
+              const double *ti = t_slot.data() + s0;
+              const double *si = s_slot.data() + s0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = layout.stencil_offset[k];
+                  const double         a = stencil.a[k], b = stencil.b[k];
+                  double               nk[dim];
+                  const double        *uj[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      nk[d] = stencil.n[d][k];
+                      uj[d] = ui[d] + o;
+                    }
+                  if (sb)
+                    {
+                      const double *tj = ti + o, *sj = si + o;
+#pragma omp simd
+                      for (unsigned int l = 0; l < len; ++l)
+                        {
+                          const double e =
+                            BondKernel::linear_extension_of_lane<dim>(nk,
+                                                                      uj,
+                                                                      ui,
+                                                                      l);
+                          const double t = BondKernel::pair_force(a,
+                                                                  ti[l],
+                                                                  tj[l],
+                                                                  b,
+                                                                  si[l],
+                                                                  sj[l],
+                                                                  e);
+                          for (unsigned int d = 0; d < dim; ++d)
+                            force[d][l] += t * nk[d];
+                        }
+                    }
+                  else
+                    {
+                    // Bond-based: s = 1 at every node.
+#pragma omp simd
+                      for (unsigned int l = 0; l < len; ++l)
+                        {
+                          const double e =
+                            BondKernel::linear_extension_of_lane<dim>(nk,
+                                                                      uj,
+                                                                      ui,
+                                                                      l);
+                          const double t =
+                            BondKernel::bond_based_pair_force(b, e);
+                          for (unsigned int d = 0; d < dim; ++d)
+                            force[d][l] += t * nk[d];
+                        }
+                    }
+                }
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < len; ++l)
+                  f_slot[d][s0 + l] = force[d][l];
+            }
+        },
+        LoopLayout<dim>::chunk_grain);
+
+      layout.for_each_node_of(
+        force_work().list_nodes,
+        [&](const unsigned int i, const std::size_t si) {
+          double f[dim] = {};
+          if (layout.use_lattice)
+            for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
+                 ++b)
+              {
+                const unsigned int k  = layout.list_stencil_index[b];
+                const std::size_t  sj = si + layout.stencil_offset[k];
+                const double       e  = BondKernel::linear_extension<dim>(
+                  [&](const unsigned int d) { return stencil.n[d][k]; },
+                  [&](const unsigned int d) {
+                    return u_slot[d][sj] - u_slot[d][si];
+                  });
+                const double t = BondKernel::pair_force(stencil.a[k],
+                                                        t_slot[si],
+                                                        t_slot[sj],
+                                                        stencil.b[k],
+                                                        s_slot[si],
+                                                        s_slot[sj],
+                                                        e);
+                for (unsigned int d = 0; d < dim; ++d)
+                  f[d] += t * stencil.n[d][k];
+              }
+          else
+            for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
+                 ++b)
+              {
+                const ListBond   &bond = list_bonds[b];
+                const std::size_t sj   = bond.neighbor_slot;
+                const double      e =
+                  BondKernel::linear_extension<dim>(bond.n,
+                                                    [&](const unsigned int d) {
+                                                      return u_slot[d][sj] -
+                                                             u_slot[d][si];
+                                                    });
+                const double t = BondKernel::pair_force(bond.a,
+                                                        t_slot[si],
+                                                        t_slot[sj],
+                                                        bond.b,
+                                                        s_slot[si],
+                                                        s_slot[sj],
+                                                        e);
+                for (unsigned int d = 0; d < dim; ++d)
+                  f[d] += t * bond.n[d];
+              }
+          for (unsigned int d = 0; d < dim; ++d)
+            f_slot[d][si] = f[d];
+        });
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::apply(const VectorType &displacement,
+                             VectorType       &force) const
+    {
+      apply_passes<false>(displacement, force);
+    }
+
+
+    template <int dim>
+    double
+    BondOperator<dim>::apply_with_energy(const VectorType &displacement,
+                                         VectorType       &force) const
+    {
+      if (!finite && !with_failure)
+        {
+          apply_passes<false>(displacement, force);
+          return elastic_energy(displacement);
+        }
+      e_slot.resize_fast(layout.n_slots);
+      apply_passes<true>(displacement, force);
+      // V_i W_i = 1/2 s_i sum_j b_ij e_ij^2 + 1/2 V_i lambda theta_i^2 as
+      // in elastic_energy(), summed in node order (the same on every run).
+      const double lambda = model->dilatation_energy_modulus();
+      double       energy = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const std::size_t si = layout.slot[i];
+          const double      theta =
+            state_based && s_slot[si] != 0 ? t_slot[si] / s_slot[si] : 0.;
+          energy += 0.5 * s_slot[si] * e_slot[si] +
+                    0.5 * (*nodes)[i].volume() * lambda * theta * theta;
+        }
+      return Utilities::MPI::sum(energy, nodes->get_communicator());
+    }
+
+
+    template <int dim>
+    template <bool with_energy>
+    void
+    BondOperator<dim>::apply_passes(const VectorType &displacement,
+                                    VectorType       &force) const
+    {
+      copy_in(displacement);
+      if (finite)
+        {
+          if (state_based)
+            nonlinear_dilatation_pass<true>();
+          nonlinear_force_pass<true, with_energy>();
+        }
+      else if (with_failure)
+        {
+          if (state_based)
+            nonlinear_dilatation_pass<false>();
+          nonlinear_force_pass<false, with_energy>();
+        }
+      else
+        {
+          if (state_based)
+            dilatation_pass();
+          force_pass();
+        }
+      double *values = force.begin();
+      layout.for_each_node(nodes->n_owned(), [&](const unsigned int i) {
+        for (unsigned int c = 0; c < dim; ++c)
+          values[layout.vector_index[i] + c] = f_slot[c][layout.slot[i]];
+      });
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::compute_dilatation(const VectorType    &displacement,
+                                          std::vector<double> &dilatation) const
+    {
+      dilatation.assign(nodes->size(), 0.);
+      if (!state_based)
+        return;
+      copy_in(displacement);
+      if (finite)
+        nonlinear_dilatation_pass<true>();
+      else if (with_failure)
+        nonlinear_dilatation_pass<false>();
+      else
+        dilatation_pass();
+      for (unsigned int i = 0; i < nodes->size(); ++i)
+        if (lists->has_list(i))
+          dilatation[i] = t_slot[layout.slot[i]] / s_slot[layout.slot[i]];
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::compute_diagonal(VectorType &diagonal) const
+    {
+      // K_ii = V_i sum_j w [beta (s_i + s_j) n (x) n + alpha s_i n (x) G_i
+      //        - alpha s_j n (x) g_ji], G_i = sum_j g_ij, with
+      // g_ij = (d / m_i) omega r w_ij n_ij (see the class documentation).
+      if (layout.use_lattice)
+        {
+          // On the lattice every bond's constants are the stencil's:
+          // g_ij = g_k m_0 / m_i, and g_ji = g_k m_0 / m_j (w_ji = w_ij).
+          const double m0      = stencil_weighted_volume;
+          const auto  &lattice = lists->lattice();
+          parallel::apply_to_subranges(
+            0u,
+            nodes->n_owned(),
+            [&](const unsigned int begin, const unsigned int end) {
+              for (unsigned int i = begin; i < end; ++i)
+                {
+                  const double   s_i = s_slot[layout.slot[i]];
+                  Tensor<1, dim> G, a_sum, diag;
+                  auto           add = [&](const unsigned int k) {
+                    std::array<std::int64_t, dim> y = lattice.coordinates(i);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      y[d] += lists->stencil()[k].offset[d];
+                    const unsigned int j   = lattice.node_at(y);
+                    const double       s_j = s_slot[layout.slot[j]];
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        const double n_c = stencil.n[c][k];
+                        diag[c] += BondKernel::extension_stiffness(stencil.b[k],
+                                                                   s_i,
+                                                                   s_j) *
+                                   n_c * n_c;
+                        if (state_based)
+                          {
+                            G[c] += stencil.g[k] * m0 / m[i] * n_c;
+                            a_sum[c] +=
+                              BondKernel::dilatation_stiffness(stencil.a[k],
+                                                               s_i) *
+                              n_c;
+                            diag[c] +=
+                              BondKernel::dilatation_stiffness(stencil.a[k],
+                                                               s_j) *
+                              n_c * n_c * stencil.g[k] * m0 / m[j];
+                          }
+                      }
+                  };
+                  layout.for_each_stencil_index(i, add);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    diagonal.local_element(layout.vector_index[i] + c) =
+                      diag[c] + a_sum[c] * G[c];
+                }
+            },
+            LoopLayout<dim>::node_grain);
+          return;
+        }
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const Point<dim> &x      = (*nodes)[i].location;
+          const double      volume = (*nodes)[i].volume();
+          const double      s_i    = s_slot[layout.slot[i]];
+          Tensor<1, dim>    G, a_sum, diag;
+          for_each_intact_bond(i, [&](const unsigned int j, const double w) {
+            const Tensor<1, dim> xi    = (*nodes)[j].location - x;
+            const double         r     = xi.norm();
+            const Tensor<1, dim> n     = xi / r;
+            const double         s_j   = s_slot[layout.slot[j]];
+            const double         alpha = model->dilatation_constant(r, horizon);
+            const double         beta  = model->extension_constant(r, horizon);
+            for (unsigned int c = 0; c < dim; ++c)
+              diag[c] +=
+                BondKernel::extension_stiffness(volume * w * beta, s_i, s_j) *
+                n[c] * n[c];
+            if (!state_based)
+              return;
+            G += dim / m[i] * model->influence(r, horizon) * r * w * n;
+            a_sum +=
+              BondKernel::dilatation_stiffness(volume * w * alpha, s_i) * n;
+            // g_ji: node j's bond back to i (weight w_ji), if it has one.
+            double w_ji = 0;
+            if (lists->has_full_stencil(j))
+              w_ji = w * (*nodes)[i].volume() / (*nodes)[j].volume();
+            else
+              for (const auto &bond : lists->bonds(j))
+                if (bond.neighbor == i)
+                  {
+                    w_ji = bond.weight;
+                    break;
+                  }
+            const double g_ji =
+              dim / m[j] * model->influence(r, horizon) * r * w_ji;
+            for (unsigned int c = 0; c < dim; ++c)
+              diag[c] +=
+                BondKernel::dilatation_stiffness(volume * w * alpha, s_j) *
+                n[c] * g_ji * n[c];
+          });
+          for (unsigned int c = 0; c < dim; ++c)
+            diagonal.local_element(layout.vector_index[i] + c) =
+              diag[c] + a_sum[c] * G[c];
+        }
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)                                              \
+  template void BondOperator<dim>::copy_in(const VectorType &) const;          \
+  template void BondOperator<dim>::dilatation_pass() const;                    \
+  template void BondOperator<dim>::force_pass() const;                         \
+  template void BondOperator<dim>::apply(const VectorType &, VectorType &)     \
+    const;                                                                     \
+  template double BondOperator<dim>::apply_with_energy(const VectorType &,     \
+                                                       VectorType &) const;    \
+  template void   BondOperator<dim>::compute_dilatation(const VectorType &,    \
+                                                      std::vector<double> &) \
+    const;                                                                     \
+  template void BondOperator<dim>::compute_diagonal(VectorType &) const;
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
+  } // namespace Operators
+} // namespace PeriDEAL

@@ -1,0 +1,100 @@
+// BondOperator::elastic_energy(): the stored energy of the intact bonds with
+// the kinematics and failure test of the force passes, compiled like the
+// fracture passes (no floating-point contraction, see
+// bond_operator_fracture.cc), so that it leaves out the bonds they leave out.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+
+#include <perideal/operators/bond/bond_kernel.h>
+#include <perideal/operators/bond_operator.h>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    template <int dim>
+    double
+    BondOperator<dim>::elastic_energy(const VectorType &displacement) const
+    {
+      // V_i W_i = 1/2 s_i sum_j b_ij e_ij^2 + 1/2 V_i lambda theta_i^2,
+      // with b_ij = V_i w_ij beta(r_ij) (Model::dilatation_energy_modulus()).
+      std::vector<double> theta;
+      compute_dilatation(displacement, theta);
+      if (!state_based)
+        copy_in(displacement);
+      const double lambda = model->dilatation_energy_modulus();
+      const bool   fail   = s0_slot.size() > 0;
+      const auto   term   = [&](const std::size_t si,
+                            const std::size_t sj,
+                            const double     *xi,
+                            const double     *n,
+                            const double      r,
+                            const double      b) {
+        const auto eta = [&](const unsigned int d) {
+          return u_slot[d][sj] - u_slot[d][si];
+        };
+        const double e = finite ?
+                               BondKernel::extension<true, dim>(xi, n, r, eta) :
+                               BondKernel::extension<false, dim>(xi, n, r, eta);
+        // The force passes' test, so that the energy leaves out the bonds
+        // that they leave out.
+        if (fail && !BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
+          return 0.;
+        return BondKernel::energy(b, e);
+      };
+      const double energy = parallel::accumulate_from_subranges<double>(
+        [&](const unsigned int begin, const unsigned int end) {
+          double sum = 0;
+          for (unsigned int i = begin; i < end; ++i)
+            {
+              const std::size_t si    = layout.slot[i];
+              double            bonds = 0;
+              if (layout.use_lattice)
+                {
+                  const auto visit = [&](const unsigned int k) {
+                    double xi[dim], n[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        xi[d] = stencil.xi[d][k];
+                        n[d]  = stencil.n[d][k];
+                      }
+                    bonds += term(si,
+                                  si + layout.stencil_offset[k],
+                                  xi,
+                                  n,
+                                  stencil.r[k],
+                                  stencil.b[k]);
+                  };
+                  layout.for_each_stencil_index(i, visit);
+                }
+              else
+                for (std::size_t b = layout.list_first[i];
+                     b < layout.list_end[i];
+                     ++b)
+                  {
+                    const ListBond &bond = list_bonds[b];
+                    double          xi[dim];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      xi[d] = bond.n[d] * bond.r;
+                    bonds +=
+                      term(si, bond.neighbor_slot, xi, bond.n, bond.r, bond.b);
+                  }
+              sum += 0.5 * s_slot[si] * bonds +
+                     0.5 * (*nodes)[i].volume() * lambda * theta[i] * theta[i];
+            }
+          return sum;
+        },
+        0u,
+        nodes->n_owned(),
+        LoopLayout<dim>::node_grain);
+      return Utilities::MPI::sum(energy, nodes->get_communicator());
+    }
+
+
+    template double
+    BondOperator<2>::elastic_energy(const VectorType &) const;
+    template double
+    BondOperator<3>::elastic_energy(const VectorType &) const;
+  } // namespace Operators
+} // namespace PeriDEAL
