@@ -379,7 +379,7 @@ namespace PeriDEAL
                                   "no node starts as metal (phase 1): there "
                                   "is nothing to corrode"));
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        c.local_element(setup.op.vector_index(i)) =
+        c.local_element(setup.vector_index[i]) =
           phase[i] == electrolyte ? c_electrolyte : c_solid;
       n_converted_local = 0;
       configure_operator(setup);
@@ -398,12 +398,12 @@ namespace PeriDEAL
     void
     Corrosion<dim>::configure_operator(const DiffusionSetup<dim> &setup) const
     {
-      setup.op.set_phases(phase,
-                          3,
-                          factor,
-                          salt_film ? c_sat :
-                                      std::numeric_limits<double>::infinity(),
-                          rate);
+      setup.set_phases(
+        {phase,
+         3,
+         factor,
+         salt_film ? c_sat : std::numeric_limits<double>::infinity(),
+         rate});
     }
 
 
@@ -413,7 +413,7 @@ namespace PeriDEAL
     {
       // No node may gain more than C_sat by dissolution in one step.
       if (rho > 0)
-        return c_sat / (rho * setup.op.largest_row_sum());
+        return c_sat / (rho * setup.largest_row_sum());
       return std::numeric_limits<double>::infinity();
     }
 
@@ -455,8 +455,7 @@ namespace PeriDEAL
       c.update_ghost_values();
       bool changed = false;
       for (unsigned int i = 0; i < setup.nodes.size(); ++i)
-        if (phase[i] == metal &&
-            c.local_element(setup.op.vector_index(i)) < c_sat)
+        if (phase[i] == metal && c.local_element(setup.vector_index[i]) < c_sat)
           {
             phase[i] = electrolyte;
             changed  = true;
@@ -479,7 +478,7 @@ namespace PeriDEAL
     {
       const auto &nodes = setup.nodes;
       const auto  value = [&](const unsigned int i) {
-        return c.local_element(setup.op.vector_index(i));
+        return c.local_element(setup.vector_index[i]);
       };
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
@@ -526,7 +525,7 @@ namespace PeriDEAL
       double         depth = 0, volume = 0, damaged = 0, amount = 0;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
-          const double ci = c.local_element(setup.op.vector_index(i));
+          const double ci = c.local_element(setup.vector_index[i]);
           const double v  = nodes[i].volume();
           if (initially_metal[i] && phase[i] == electrolyte)
             {
@@ -558,21 +557,21 @@ namespace PeriDEAL
 
 
     template <int dim>
-    std::vector<IO::NodeField>
+    std::vector<NodeField>
     Corrosion<dim>::node_fields(const DiffusionSetup<dim> &setup,
                                 const VectorType          &c) const
     {
-      IO::NodeField phase_field{"phase", {}}, corrosion{"corrosion_damage", {}},
+      NodeField phase_field{"phase", {}}, corrosion{"corrosion_damage", {}},
         damage{"damage", {}};
       for (unsigned int i = 0; i < setup.nodes.n_owned(); ++i)
         {
           phase_field.values.push_back(phase[i]);
           corrosion.values.push_back(
-            damage_variable(i, c.local_element(setup.op.vector_index(i))));
+            damage_variable(i, c.local_element(setup.vector_index[i])));
           if (with_damage)
             damage.values.push_back(mechanical.damage(i));
         }
-      std::vector<IO::NodeField> fields = {phase_field, corrosion};
+      std::vector<NodeField> fields = {phase_field, corrosion};
       if (with_damage)
         fields.push_back(damage);
       return fields;

@@ -75,7 +75,7 @@ namespace PeriDEAL
 
 
     template <int dim>
-    std::vector<IO::NodeField>
+    std::vector<NodeField>
     DiffusionModel<dim>::node_fields(const DiffusionSetup<dim> &,
                                      const VectorType &) const
     {

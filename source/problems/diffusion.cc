@@ -2,8 +2,8 @@
  * @file
  * The run of the diffusion problem type: the set-up (kernel, bond state,
  * operator, layers), the initial state, the time step against the
- * stability bound, the time loop with its explicit and implicit steps (or
- * the one solve of a steady state), the memory estimate; the explicit
+ * stability bound, the time loop whose steps (or the one solve of a
+ * steady state) its integrator takes, the memory estimate; the explicit
  * instantiation of Diffusion and its registration as the problem type
  * 'diffusion'. The input is in diffusion_parameters.cc, the layers in
  * diffusion_layers.cc, the linear solves in diffusion_solve.cc, their
@@ -28,14 +28,11 @@ namespace PeriDEAL
   namespace Problems
   {
     template <int dim>
-    Models::DiffusionSetup<dim>
-    Diffusion<dim>::model_setup(Simulator<dim> &simulator)
+    const Models::DiffusionSetup<dim> &
+    Diffusion<dim>::model_setup() const
     {
-      return {simulator.get_nodes(),
-              simulator.get_neighbor_lists(),
-              kernel,
-              op,
-              horizon};
+      Assert(model_view.has_value(), ExcInternalError());
+      return *model_view;
     }
 
 
@@ -54,18 +51,14 @@ namespace PeriDEAL
             finite_check.value(value, initial_entry, x);
             c.local_element(op.vector_index(i)) = value;
           }
-        model->initialize(model_setup(simulator), c);
+        model->initialize(model_setup(), c);
         apply_layer_values(0, c);
         finite_check.throw_pending(simulator.get_communicator());
       }
-      if (stepping == Stepping::steady_state)
+      if (!integrator->takes_time_steps())
         {
           TimerOutput::Scope scope(simulator.get_timer(), "steady solve");
-          evaluate_source(0, rhs);
-          if (local_laplacian)
-            setup_local_laplacian(simulator, 0, 1);
-          last_iterations = solve(simulator, 0, 1, rhs, c);
-          total_iterations += last_iterations;
+          integrator->step(*this, simulator);
           check_finite(simulator);
           record_history(simulator);
           print_progress_line(simulator);
@@ -73,8 +66,7 @@ namespace PeriDEAL
           return;
         }
       choose_time_step(simulator);
-      if (stepping == Stepping::implicit && local_laplacian)
-        setup_local_laplacian(simulator, 1, theta * dt);
+      integrator->initialize(*this, simulator);
       record_history(simulator);
       write_output(simulator);
       TimerOutput::Scope scope(simulator.get_timer(), "time steps");
@@ -82,10 +74,7 @@ namespace PeriDEAL
       last_progress = loop_start;
       while (step_number < n_steps)
         {
-          if (stepping == Stepping::explicit_euler)
-            explicit_step(simulator);
-          else
-            implicit_step(simulator);
+          integrator->step(*this, simulator);
           check_finite(simulator);
           const bool last = step_number == n_steps;
           const bool by_steps =
@@ -95,7 +84,7 @@ namespace PeriDEAL
           {
             TimerOutput::Scope model_scope(simulator.get_timer(),
                                            "model (" + model_name + ")");
-            model->after_step(model_setup(simulator),
+            model->after_step(model_setup(),
                               time,
                               c,
                               row || by_steps || by_time);
@@ -113,7 +102,7 @@ namespace PeriDEAL
               write_output(simulator);
             }
         }
-      if (stepping == Stepping::implicit)
+      if (integrator->solves_linear_systems())
         simulator.get_pcout()
           << "           " << total_iterations << " solver iterations in "
           << n_steps << " steps (" << std::fixed << std::setprecision(1)
@@ -161,6 +150,23 @@ namespace PeriDEAL
       // Before any model sets phases (with fixed flows the operator is
       // affine).
       radius_estimate = op.estimate_spectral_radius(60);
+      vector_index.resize(nodes.size());
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        vector_index[i] = op.vector_index(i);
+      model_view.emplace(Models::DiffusionSetup<dim>{
+        nodes,
+        simulator.get_neighbor_lists(),
+        kernel,
+        vector_index,
+        [this](const Models::DiffusionPhases &phases) {
+          op.set_phases(phases.phase_of_node,
+                        phases.n_phases,
+                        phases.factor,
+                        phases.gate,
+                        phases.rate);
+        },
+        [this]() { return op.largest_row_sum(); },
+        horizon});
 
       setup_layers(simulator);
 
@@ -182,7 +188,7 @@ namespace PeriDEAL
                                              " (continuum)")
         << ", " << Utilities::MPI::sum(dirichlet_nodes.size(), comm)
         << " Dirichlet nodes, " << Utilities::MPI::sum(flux_nodes.size(), comm)
-        << " flux nodes, " << stepping_name(stepping) << ", "
+        << " flux nodes, " << integrator->name() << ", "
         << MultithreadInfo::n_threads() << " thread(s) per process"
         << std::endl;
     }
@@ -209,10 +215,9 @@ namespace PeriDEAL
                                     "the diffusivity of a real medium, about "
                                     "1e-12 to 1e-3 m^2/s (or of order 1 in "
                                     "nondimensional units)"));
-      dt_bound = 2 / bound;
-      const double model_bound =
-        model->largest_time_step(model_setup(simulator));
-      const bool limited_by_model = model_bound < dt_bound;
+      dt_bound                      = 2 / bound;
+      const double model_bound      = model->largest_time_step(model_setup());
+      const bool   limited_by_model = model_bound < dt_bound;
       if (limited_by_model)
         {
           dt_bound = model_bound;
@@ -220,7 +225,7 @@ namespace PeriDEAL
             << "           the model '" << model_name
             << "' limits the time step to " << model_bound << std::endl;
         }
-      if (stepping == Stepping::explicit_euler && given_time_step > 0)
+      if (integrator->is_conditionally_stable() && given_time_step > 0)
         AssertThrow(given_time_step <= dt_bound || allow_unstable,
                     ExcInvalidInput(
                       section + "/Time step",
@@ -236,7 +241,7 @@ namespace PeriDEAL
                         "time step = true'"));
       // Implicit schemes are stable at any step: no bound (only the count).
       StabilityBound step_bound;
-      if (stepping == Stepping::explicit_euler)
+      if (integrator->is_conditionally_stable())
         {
           step_bound.value = dt_bound;
           step_bound.description =
@@ -266,52 +271,10 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    Diffusion<dim>::explicit_step(Simulator<dim> &)
+    Diffusion<dim>::advance_time()
     {
-      // C^{n+1} = C^n + dt (L C^n + S^n) (paper Eq. 31); prescribed values
-      // at t^{n+1}.
-      // A diffusion model may have left the ghost values of this state up
-      // to date (corrosion exchanges them after each step): not twice.
-      if (!c.has_ghost_elements())
-        c.update_ghost_values();
-      op.apply(c, lc);
-      evaluate_source(time, s);
-      c.zero_out_ghost_values();
-      const unsigned int n = c.locally_owned_size();
-      for (unsigned int k = 0; k < n; ++k)
-        if (!is_prescribed[k])
-          c.local_element(k) += dt * (lc.local_element(k) + s.local_element(k));
       ++step_number;
       time = step_number == n_steps ? end_time : step_number * dt;
-      apply_layer_values(time, c);
-    }
-
-
-    template <int dim>
-    void
-    Diffusion<dim>::implicit_step(Simulator<dim> &simulator)
-    {
-      // (I - theta dt L) C^{n+1} = C^n + (1 - theta) dt (L C^n + S^n)
-      //                           + theta dt S^{n+1}.
-      const unsigned int n = c.locally_owned_size();
-      rhs                  = c;
-      if (theta < 1)
-        {
-          c.update_ghost_values();
-          op.apply(c, lc);
-          c.zero_out_ghost_values();
-          evaluate_source(time, s);
-          for (unsigned int k = 0; k < n; ++k)
-            rhs.local_element(k) +=
-              (1 - theta) * dt * (lc.local_element(k) + s.local_element(k));
-        }
-      ++step_number;
-      time = step_number == n_steps ? end_time : step_number * dt;
-      evaluate_source(time, s);
-      rhs.add(theta * dt, s);
-      apply_layer_values(time, c);
-      last_iterations = solve(simulator, 1, theta * dt, rhs, c);
-      total_iterations += last_iterations;
     }
 
 

@@ -12,6 +12,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/problems/diffusion/instantiate.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +26,7 @@ namespace PeriDEAL
     std::string
     Diffusion<dim>::solve_label() const
     {
-      if (stepping == Stepping::steady_state)
+      if (!integrator->takes_time_steps())
         return "the steady-state solve";
       return "the linear solve of step " + std::to_string(step_number) +
              " (t = " + format_number(time) + ")";
@@ -91,11 +92,10 @@ namespace PeriDEAL
                    "time.";
           };
           // The times at which the right-hand side evaluates the data.
-          std::vector<double> times = {time};
-          if (stepping == Stepping::implicit && theta < 1)
-            times.push_back((step_number - 1) * dt);
+          const std::vector<double> times =
+            integrator->data_times(time, dt, step_number);
           const bool first_solve =
-            stepping == Stepping::steady_state || step_number <= 1;
+            !integrator->takes_time_steps() || step_number <= 1;
           if (is_prescribed[k])
             message = named("Boundary concentration",
                             x.local_element(k),
@@ -113,7 +113,7 @@ namespace PeriDEAL
                         message =
                           named("Source", v, t, "in the right-hand side");
                     }
-              if (with_flux && flux_values == "source" &&
+              if (with_flux && flux_values == FluxValues::source &&
                   std::find(flux_nodes.begin(), flux_nodes.end(), node) !=
                     flux_nodes.end())
                 for (const double t : times)
@@ -132,7 +132,7 @@ namespace PeriDEAL
                 message = named("Initial concentration",
                                 x.local_element(k),
                                 0,
-                                stepping == Stepping::steady_state ?
+                                !integrator->takes_time_steps() ?
                                   "the initial guess" :
                                   "the initial state in the right-hand side");
               if (message.empty())
@@ -203,7 +203,7 @@ namespace PeriDEAL
                   "numbers (about 1e308). Check the magnitudes of "
                   "'diffusion/Diffusivity' ("
                << kernel.diffusivity() << ")"
-               << (stepping == Stepping::implicit ?
+               << (integrator->takes_time_steps() ?
                      ", 'diffusion/Time step' (" + format_number(dt) + ")" :
                      std::string())
                << " and the data. The output written before is complete.";
@@ -219,7 +219,7 @@ namespace PeriDEAL
       // The sources and boundary values were finite where they were
       // evaluated (else their entry would be named): the solution diverged.
       std::ostringstream advice;
-      if (stepping == Stepping::explicit_euler)
+      if (integrator->is_conditionally_stable())
         advice << "The run is unstable: reduce 'diffusion/Time step' "
                   "(forward Euler bound "
                << dt_bound << ") or check the constants.";
@@ -250,9 +250,7 @@ namespace PeriDEAL
                                                    const bool,               \
                                                    const double,             \
                                                    const VectorType &) const;
-    PERIDEAL_INSTANTIATE(1)
-    PERIDEAL_INSTANTIATE(2)
-    PERIDEAL_INSTANTIATE(3)
+    PERIDEAL_DIFFUSION_INSTANTIATE(PERIDEAL_INSTANTIATE)
 #undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

@@ -8,6 +8,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/problems/diffusion/instantiate.h>
 
 #include <cmath>
 #include <limits>
@@ -82,7 +83,7 @@ namespace PeriDEAL
       setup_layer_values(simulator);
 
       prescribed_nodes = dirichlet_nodes;
-      if (flux_values == "mirror")
+      if (flux_values == FluxValues::mirror)
         prescribed_nodes.insert(prescribed_nodes.end(),
                                 flux_nodes.begin(),
                                 flux_nodes.end());
@@ -126,10 +127,10 @@ namespace PeriDEAL
       surface_points.clear();
       reflections.clear();
       reflection_passes           = 0;
-      const bool dirichlet_mirror = layer_values == "mirror";
-      const bool flux_mirror      = flux_values == "mirror";
+      const bool dirichlet_mirror = layer_values == LayerValues::mirror;
+      const bool flux_mirror      = flux_values == FluxValues::mirror;
       const bool dirichlet_points =
-        layer_values != "function" && !dirichlet_ids.empty();
+        layer_values != LayerValues::function && !dirichlet_ids.empty();
       if (!dirichlet_points && !(flux_mirror && !flux_ids.empty()))
         return;
       const auto    &tria    = simulator.get_dof_handler().get_triangulation();
@@ -240,12 +241,12 @@ namespace PeriDEAL
                               "layers)";
       AssertThrow(Utilities::MPI::sum(missing_dirichlet, comm) == 0,
                   ExcInvalidInput(section + "/Dirichlet layer values",
-                                  layer_values,
+                                  layer_values_text,
                                   "a Dirichlet layer node" + why +
                                     "; use 'surface value'"));
       AssertThrow(Utilities::MPI::sum(missing_flux, comm) == 0,
                   ExcInvalidInput(section + "/Flux layer values",
-                                  flux_values,
+                                  flux_values_text,
                                   "a flux layer node" + why +
                                     "; use 'source'"));
       // Every process runs the same passes (each has a ghost update), also
@@ -260,7 +261,7 @@ namespace PeriDEAL
     Diffusion<dim>::apply_layer_values(const double t, VectorType &x) const
     {
       boundary_value->set_time(t);
-      if (layer_values == "function")
+      if (layer_values == LayerValues::function)
         for (const auto i : dirichlet_nodes)
           {
             const double g = boundary_value->value((*nodes)[i].location);
@@ -268,7 +269,7 @@ namespace PeriDEAL
                                true, t);
             x.local_element(op.vector_index(i)) = g;
           }
-      else if (layer_values == "surface value")
+      else if (layer_values == LayerValues::surface_value)
         for (unsigned int k = 0; k < dirichlet_nodes.size(); ++k)
           {
             const double g = boundary_value->value(surface_points[k]);
@@ -334,7 +335,7 @@ namespace PeriDEAL
               x.local_element(op.vector_index(i)) = value;
             }
         }
-      if (with_flux && flux_values == "source")
+      if (with_flux && flux_values == FluxValues::source)
         {
           // A flux q through the surface enters as the source q / l spread
           // over the layer of thickness l (its integral over the layer is
@@ -352,29 +353,14 @@ namespace PeriDEAL
     }
 
 
-    template void
-    Diffusion<1>::setup_layers(Simulator<1> &);
-    template void
-    Diffusion<1>::setup_layer_values(Simulator<1> &);
-    template void
-    Diffusion<1>::apply_layer_values(const double, VectorType &) const;
-    template void
-    Diffusion<1>::evaluate_source(const double, VectorType &) const;
-    template void
-    Diffusion<2>::setup_layers(Simulator<2> &);
-    template void
-    Diffusion<2>::setup_layer_values(Simulator<2> &);
-    template void
-    Diffusion<2>::apply_layer_values(const double, VectorType &) const;
-    template void
-    Diffusion<2>::evaluate_source(const double, VectorType &) const;
-    template void
-    Diffusion<3>::setup_layers(Simulator<3> &);
-    template void
-    Diffusion<3>::setup_layer_values(Simulator<3> &);
-    template void
-    Diffusion<3>::apply_layer_values(const double, VectorType &) const;
-    template void
-    Diffusion<3>::evaluate_source(const double, VectorType &) const;
+#define PERIDEAL_INSTANTIATE(dim)                                              \
+  template void Diffusion<dim>::setup_layers(Simulator<dim> &);                \
+  template void Diffusion<dim>::setup_layer_values(Simulator<dim> &);          \
+  template void Diffusion<dim>::apply_layer_values(const double, VectorType &) \
+    const;                                                                     \
+  template void Diffusion<dim>::evaluate_source(const double, VectorType &)    \
+    const;
+    PERIDEAL_DIFFUSION_INSTANTIATE(PERIDEAL_INSTANTIATE)
+#undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

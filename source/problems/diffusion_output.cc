@@ -11,6 +11,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/problems/diffusion/instantiate.h>
 
 #include <algorithm>
 #include <cmath>
@@ -69,7 +70,7 @@ namespace PeriDEAL
                                      std::sqrt(error2));
           row.push_back(max_error);
         }
-      const auto values = model->history_values(model_setup(simulator), c);
+      const auto values = model->history_values(model_setup(), c);
       row.insert(row.end(), values.begin(), values.end());
       history.push_back(row);
     }
@@ -85,14 +86,14 @@ namespace PeriDEAL
       auto       &out  = simulator.get_pcout();
       out << "[" << std::setw(8) << std::fixed << std::setprecision(2) << now
           << " s] ";
-      if (stepping == Stepping::steady_state)
+      if (!integrator->takes_time_steps())
         out << "steady state";
       else
         out << "step " << step_number << "/" << n_steps
             << ", t = " << std::scientific << std::setprecision(4) << time;
       out << std::scientific << std::setprecision(4) << ", total " << row[2]
           << ", min " << row[3] << ", max " << row[4];
-      if (stepping != Stepping::explicit_euler)
+      if (integrator->solves_linear_systems())
         out << ", " << last_iterations << " iterations";
       if (compare)
         out << ", relative l2 error " << row[6] << ", max error " << row[7];
@@ -101,7 +102,7 @@ namespace PeriDEAL
             << model->progress_text(
                  std::vector<double>(row.end() - model_columns.size(),
                                      row.end()));
-      if (stepping != Stepping::steady_state)
+      if (integrator->takes_time_steps())
         {
           const double rate = step_number / std::max(now - loop_start, 1e-9);
           out << ", " << std::fixed << std::setprecision(1) << rate
@@ -140,8 +141,8 @@ namespace PeriDEAL
           std::vector<IO::NodeField> fields = {concentration, rank};
           if (compare)
             fields.push_back(error);
-          for (auto &field : model->node_fields(model_setup(simulator), c))
-            fields.push_back(std::move(field));
+          for (auto &field : model->node_fields(model_setup(), c))
+            fields.push_back({field.name, std::move(field.values)});
           const std::string record = output.write(simulator.get_dof_handler(),
                                                   *nodes,
                                                   fields,
@@ -204,9 +205,7 @@ namespace PeriDEAL
   template void Diffusion<dim>::write_output(Simulator<dim> &);        \
   template std::vector<IO::OutputName> Diffusion<dim>::output_names(   \
     const Simulator<dim> &) const;
-    PERIDEAL_INSTANTIATE(1)
-    PERIDEAL_INSTANTIATE(2)
-    PERIDEAL_INSTANTIATE(3)
+    PERIDEAL_DIFFUSION_INSTANTIATE(PERIDEAL_INSTANTIATE)
 #undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

@@ -2,14 +2,15 @@
  * @file
  * The input of the diffusion problem type: its entries declared with their
  * patterns and help texts, read and checked (parse_parameters(); 'Time
- * stepping' into Diffusion::Stepping), and the entries that this run leaves
- * unused (unused_entries()); the checks against the simulator's entries are
- * TimeSteppingProblem::check_input().
+ * stepping' into its integrator, the layer selections into values), and the
+ * entries that this run leaves unused (unused_entries()); the checks against
+ * the simulator's entries are TimeSteppingProblem::check_input().
  */
 
 #include <perideal/base/exceptions.h>
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/problems/diffusion/instantiate.h>
 
 #include <algorithm>
 #include <string>
@@ -79,22 +80,32 @@ namespace PeriDEAL
                         "1000",
                         Patterns::Integer(1),
                         "Iterations of an implicit solve before it fails.");
-      prm.enter_subsection("Initial concentration");
-      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
-      prm.leave_subsection();
-      prm.enter_subsection("Source");
-      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
-      prm.leave_subsection();
-      prm.declare_entry("Dirichlet boundary ids",
-                        "",
-                        Patterns::List(Patterns::Integer(0, 254)),
-                        "Boundaries along which 'Boundary concentration' is "
-                        "prescribed in a layer of 'Dirichlet layer "
-                        "thickness'.");
-      prm.declare_entry("Dirichlet layer thickness",
-                        "1",
-                        Patterns::Double(),
-                        "Thickness of the Dirichlet layers, in horizons.");
+      // The function subsections: scalar functions of x and t.
+      const auto declare_function = [&](const std::string &name) {
+        prm.enter_subsection(name);
+        Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
+        prm.leave_subsection();
+      };
+      // The boundary ids and the thickness of a kind of layer.
+      const auto declare_layer = [&](const std::string &kind,
+                                     const std::string &layers,
+                                     const std::string &ids_help) {
+        prm.declare_entry(kind + " boundary ids",
+                          "",
+                          Patterns::List(Patterns::Integer(0, 254)),
+                          ids_help);
+        prm.declare_entry(kind + " layer thickness",
+                          "1",
+                          Patterns::Double(),
+                          "Thickness of the " + layers + ", in horizons.");
+      };
+      declare_function("Initial concentration");
+      declare_function("Source");
+      declare_layer("Dirichlet",
+                    "Dirichlet layers",
+                    "Boundaries along which 'Boundary concentration' is "
+                    "prescribed in a layer of 'Dirichlet layer "
+                    "thickness'.");
       prm.declare_entry(
         "Dirichlet layer values",
         "function",
@@ -107,19 +118,12 @@ namespace PeriDEAL
         "odd reflection through the surface point x_b of the value at the "
         "mirror node x_m (second order for a smooth solution; explicit time "
         "stepping, uniform grids).");
-      prm.enter_subsection("Boundary concentration");
-      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
-      prm.leave_subsection();
-      prm.declare_entry("Flux boundary ids",
-                        "",
-                        Patterns::List(Patterns::Integer(0, 254)),
-                        "Boundaries through which 'Boundary flux' enters, as "
-                        "a source (flux / thickness) in a layer of 'Flux "
-                        "layer thickness'.");
-      prm.declare_entry("Flux layer thickness",
-                        "1",
-                        Patterns::Double(),
-                        "Thickness of the flux layers, in horizons.");
+      declare_function("Boundary concentration");
+      declare_layer("Flux",
+                    "flux layers",
+                    "Boundaries through which 'Boundary flux' enters, as "
+                    "a source (flux / thickness) in a layer of 'Flux "
+                    "layer thickness'.");
       prm.declare_entry(
         "Flux layer values",
         "source",
@@ -133,18 +137,14 @@ namespace PeriDEAL
         "gradient the flux gives (zero flux: a plain even reflection); "
         "second order for a smooth solution; explicit time stepping, "
         "uniform grids.");
-      prm.enter_subsection("Boundary flux");
-      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
-      prm.leave_subsection();
+      declare_function("Boundary flux");
       prm.declare_entry("Compare with analytical solution",
                         "false",
                         Patterns::Bool(),
                         "Report the error against 'Analytical "
                         "concentration' (relative l2 norm over the free "
                         "nodes and the largest nodal error).");
-      prm.enter_subsection("Analytical concentration");
-      Functions::ParsedFunction<dim>::declare_parameters(prm, 1);
-      prm.leave_subsection();
+      declare_function("Analytical concentration");
       prm.declare_entry("Output every steps",
                         "0",
                         Patterns::Integer(0),
@@ -177,39 +177,17 @@ namespace PeriDEAL
 
 
     template <int dim>
-    std::string
-    Diffusion<dim>::stepping_name(const Stepping value)
-    {
-      switch (value)
-        {
-          case Stepping::explicit_euler:
-            return "explicit";
-          case Stepping::implicit:
-            return "implicit";
-          case Stepping::steady_state:
-            return "steady state";
-        }
-      Assert(false, ExcInternalError());
-      return "";
-    }
-
-
-    template <int dim>
     void
     Diffusion<dim>::parse_parameters(ParameterHandler &prm)
     {
       kernel.parse_parameters(prm, section);
       const std::string stepping_text = prm.get("Time stepping");
-      for (const auto value : {Stepping::explicit_euler,
-                               Stepping::implicit,
-                               Stepping::steady_state})
-        if (stepping_name(value) == stepping_text)
-          stepping = value;
-      Assert(stepping_name(stepping) == stepping_text,
-             ExcInternalError()); // the pattern admits these three only
+      integrator                      = DiffusionIntegrators::create<dim>(
+        stepping_text,
+        prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5);
       model_name = prm.get("Model");
       model      = Models::DiffusionModelRegistry<dim>::create(model_name, prm);
-      AssertThrow(stepping == Stepping::explicit_euler ||
+      AssertThrow(!integrator->solves_linear_systems() ||
                     model->supports_implicit(),
                   ExcInvalidInput(section + "/Time stepping",
                                   stepping_text,
@@ -217,18 +195,18 @@ namespace PeriDEAL
                                     "' runs with explicit time stepping "
                                     "only"));
       model_columns = model->history_columns();
-      theta         = prm.get("Implicit scheme") == "backward Euler" ? 1. : 0.5;
       end_time      = prm.get_double("End time");
-      AssertThrow(end_time > 0 || stepping == Stepping::steady_state,
+      AssertThrow(end_time > 0 || !integrator->takes_time_steps(),
                   ExcInvalidInput(section + "/End time",
                                   prm.get("End time"),
                                   "give a simulated time > 0"));
       given_time_step = prm.get_double("Time step");
       AssertThrow(given_time_step >= 0 &&
-                    (given_time_step > 0 || stepping != Stepping::implicit),
+                    (given_time_step > 0 ||
+                     !integrator->needs_given_time_step()),
                   ExcInvalidInput(section + "/Time step",
                                   prm.get("Time step"),
-                                  stepping == Stepping::implicit ?
+                                  integrator->needs_given_time_step() ?
                                     "implicit time stepping needs a time "
                                     "step > 0" :
                                     "give a step > 0, or 0 for the "
@@ -267,16 +245,23 @@ namespace PeriDEAL
       dirichlet_ids      = Boundary::parse_boundary_ids(dirichlet_ids_text);
       flux_ids           = Boundary::parse_boundary_ids(flux_ids_text);
       dirichlet_thickness_text = prm.get("Dirichlet layer thickness");
-      layer_values             = prm.get("Dirichlet layer values");
-      flux_values              = prm.get("Flux layer values");
-      flux_thickness_text      = prm.get("Flux layer thickness");
-      dirichlet_thickness      = prm.get_double("Dirichlet layer thickness");
-      flux_thickness           = prm.get_double("Flux layer thickness");
+      layer_values_text        = prm.get("Dirichlet layer values");
+      flux_values_text         = prm.get("Flux layer values");
+      layer_values =
+        layer_values_text == "function"      ? LayerValues::function :
+        layer_values_text == "surface value" ? LayerValues::surface_value :
+                                               LayerValues::mirror;
+      flux_values =
+        flux_values_text == "source" ? FluxValues::source : FluxValues::mirror;
+      flux_thickness_text = prm.get("Flux layer thickness");
+      dirichlet_thickness = prm.get_double("Dirichlet layer thickness");
+      flux_thickness      = prm.get_double("Flux layer thickness");
       // What every kind of layer needs: a thickness > 0; and for mirror
       // layers explicit stepping (their values depend on the solution) and
       // at most one horizon (an image lies up to two thicknesses away, and
       // the node set holds the off-process nodes within two horizons).
       const auto check_layer = [&](const std::string &kind,
+                                   const bool         mirror,
                                    const std::string &values,
                                    const double       thickness,
                                    const std::string &thickness_text,
@@ -285,9 +270,9 @@ namespace PeriDEAL
                     ExcInvalidInput(section + "/" + kind + " layer thickness",
                                     thickness_text,
                                     "give a thickness > 0 (in horizons)"));
-        if (values != "mirror")
+        if (!mirror)
           return;
-        AssertThrow(stepping == Stepping::explicit_euler,
+        AssertThrow(!integrator->solves_linear_systems(),
                     ExcInvalidInput(section + "/" + kind + " layer values",
                                     values,
                                     "mirror layers need 'Time stepping = "
@@ -302,12 +287,14 @@ namespace PeriDEAL
                                     "(horizon)"));
       };
       check_layer("Dirichlet",
-                  layer_values,
+                  layer_values == LayerValues::mirror,
+                  layer_values_text,
                   dirichlet_thickness,
                   dirichlet_thickness_text,
                   "'surface value' or 'function'");
       check_layer("Flux",
-                  flux_values,
+                  flux_values == FluxValues::mirror,
+                  flux_values_text,
                   flux_thickness,
                   flux_thickness_text,
                   "'source'");
@@ -319,7 +306,7 @@ namespace PeriDEAL
                                     "boundary id " + std::to_string(id) +
                                       " is also in 'Dirichlet boundary ids'; a "
                                       "face carries either a value or a flux"));
-      AssertThrow(stepping != Stepping::steady_state || !dirichlet_ids.empty(),
+      AssertThrow(integrator->takes_time_steps() || !dirichlet_ids.empty(),
                   ExcInvalidInput(section + "/Dirichlet boundary ids",
                                   dirichlet_ids_text,
                                   "a steady state needs prescribed values "
@@ -355,40 +342,8 @@ namespace PeriDEAL
         for (const auto &entry : entries)
           unused.push_back({prefix + entry, why});
       };
-      if (stepping != Stepping::implicit)
-        add({"Implicit scheme"},
-            "'Time stepping = " + stepping_name(stepping) +
-              "' uses no implicit scheme; set 'Time stepping = implicit' to "
-              "use it, or remove the entry");
-      if (stepping == Stepping::explicit_euler)
-        add({"Preconditioner", "Solver tolerance", "Maximum iterations"},
-            "'Time stepping = explicit' solves no linear system; remove the "
-            "entry, or choose 'implicit' or 'steady state'");
-      if (stepping == Stepping::steady_state)
-        add({"Time step",
-             "End time",
-             "Output every steps",
-             "Output interval",
-             "History every steps"},
-            "'Time stepping = steady state' takes no time steps (one solve, "
-            "one output, sources and boundary values at t = 0); remove the "
-            "entry, or choose 'explicit' or 'implicit'");
-      if (stepping != Stepping::explicit_euler || given_time_step > 0)
-        add({"Safety factor"},
-            stepping != Stepping::explicit_euler ?
-              "the time step of 'Time stepping = " + stepping_name(stepping) +
-                "' is 'Time step' itself; remove the entry" :
-              std::string("'Time step' is given, so no fraction of the "
-                          "stability bound is taken; set 'Time step = 0' to "
-                          "use it, or remove the entry"));
-      if (stepping != Stepping::explicit_euler || given_time_step == 0)
-        add({"Allow unstable time step"},
-            stepping != Stepping::explicit_euler ?
-              "'Time stepping = " + stepping_name(stepping) +
-                "' has no stability bound to exceed; remove the entry" :
-              std::string("with 'Time step = 0' the step is 'Safety "
-                          "factor' (at most 1) times the stability bound, "
-                          "never above it; remove the entry"));
+      for (const auto &rule : integrator->unused_entries(given_time_step > 0))
+        unused.push_back({prefix + rule.pattern, rule.why});
       if (dirichlet_ids.empty())
         add({"Dirichlet layer thickness",
              "Dirichlet layer values",
@@ -409,15 +364,12 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)                                              \
-  template void        Diffusion<dim>::declare_parameters(ParameterHandler &); \
-  template std::string Diffusion<dim>::stepping_name(const Stepping);          \
-  template void        Diffusion<dim>::parse_parameters(ParameterHandler &);   \
-  template std::vector<UnusedEntry> Diffusion<dim>::unused_entries(            \
+#define PERIDEAL_INSTANTIATE(dim)                                       \
+  template void Diffusion<dim>::declare_parameters(ParameterHandler &); \
+  template void Diffusion<dim>::parse_parameters(ParameterHandler &);   \
+  template std::vector<UnusedEntry> Diffusion<dim>::unused_entries(     \
     const Simulator<dim> &) const;
-    PERIDEAL_INSTANTIATE(1)
-    PERIDEAL_INSTANTIATE(2)
-    PERIDEAL_INSTANTIATE(3)
+    PERIDEAL_DIFFUSION_INSTANTIATE(PERIDEAL_INSTANTIATE)
 #undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

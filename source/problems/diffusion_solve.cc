@@ -13,6 +13,7 @@
 
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/problems/diffusion/instantiate.h>
 #include <perideal/solvers/amg.h>
 #include <perideal/solvers/krylov.h>
 
@@ -248,9 +249,7 @@ namespace PeriDEAL
   template void         Diffusion<dim>::setup_local_laplacian(Simulator<dim> &, \
                                                       const double,     \
                                                       const double);
-    PERIDEAL_INSTANTIATE(1)
-    PERIDEAL_INSTANTIATE(2)
-    PERIDEAL_INSTANTIATE(3)
+    PERIDEAL_DIFFUSION_INSTANTIATE(PERIDEAL_INSTANTIATE)
 #undef PERIDEAL_INSTANTIATE
   } // namespace Problems
 } // namespace PeriDEAL

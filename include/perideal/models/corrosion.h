@@ -103,7 +103,7 @@ namespace PeriDEAL
       history_values(const DiffusionSetup<dim> &setup,
                      const VectorType          &c) const override;
 
-      std::vector<IO::NodeField>
+      std::vector<NodeField>
       node_fields(const DiffusionSetup<dim> &setup,
                   const VectorType          &c) const override;
 

@@ -6,13 +6,13 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <perideal/base/input_checks.h>
+#include <perideal/base/node_field.h>
 #include <perideal/base/plugin_registry.h>
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
-#include <perideal/io/solution_output.h>
 #include <perideal/models/diffusion_kernel.h>
-#include <perideal/operators/diffusion_operator.h>
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -23,16 +23,44 @@ namespace PeriDEAL
   {
     using namespace dealii;
 
-    /// What a diffusion model works on: the set-up of the diffusion
-    /// problem.
+    /**
+     * Phases of the nodes and what they do to the bonds, as a model hands
+     * them to the diffusion operator (the arguments of
+     * Operators::DiffusionOperator::set_phases(), which says what each
+     * means): a phase per node of the set, the symmetric factor table of
+     * the conductances, the gate of interface bonds and the optional
+     * antisymmetric table of fixed flows.
+     */
+    struct DiffusionPhases
+    {
+      const std::vector<unsigned char> &phase_of_node;
+      unsigned int                      n_phases;
+      const std::vector<double>        &factor;
+      double                            gate;
+      const std::vector<double>        &rate;
+    };
+
+    /**
+     * What a diffusion model works on, filled by the diffusion problem
+     * type: the nodes, their lists and the kernel, where each node's value
+     * lies in the concentration vector, and the two things a model may ask
+     * of the operator (models sit below operators/ and see none).
+     */
     template <int dim>
     struct DiffusionSetup
     {
       const Discretization::NodeSet<dim>      &nodes;
       const Discretization::NeighborList<dim> &lists;
       const DiffusionKernel                   &kernel;
-      Operators::DiffusionOperator<dim>       &op;
-      double                                   horizon;
+      /// The index of node i of the set (owned and ghosts) in the
+      /// concentration vector: owned nodes below its locally_owned_size().
+      const std::vector<unsigned int> &vector_index;
+      /// Hand the operator new phases; call again whenever they change.
+      std::function<void(const DiffusionPhases &)> set_phases;
+      /// \f$\max_i\sum_j\mu_{ij}\f$ over all processes, without phase
+      /// factors. Collective.
+      std::function<double()> largest_row_sum;
+      double                  horizon;
     };
 
     /**
@@ -40,7 +68,7 @@ namespace PeriDEAL
      * (registered by name; its entries live in the subsection
      * `diffusion/<name>`): `none` (plain diffusion) or `corrosion`. The
      * problem type calls the hooks below; a model changes the operator
-     * through DiffusionOperator::set_phases() and the state through the
+     * through DiffusionSetup::set_phases and the state through the
      * concentration vector.
      */
     template <int dim>
@@ -116,7 +144,7 @@ namespace PeriDEAL
                      const VectorType          &c) const;
 
       /// Fields per owned node for the output.
-      virtual std::vector<IO::NodeField>
+      virtual std::vector<NodeField>
       node_fields(const DiffusionSetup<dim> &setup, const VectorType &c) const;
 
       /// Text for the progress line from history_values().

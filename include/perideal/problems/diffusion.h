@@ -11,6 +11,7 @@
 #include <perideal/models/diffusion_kernel.h>
 #include <perideal/models/diffusion_model.h>
 #include <perideal/operators/diffusion_operator.h>
+#include <perideal/problems/diffusion/integrators.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 #include <perideal/problems/time_loop.h>
@@ -20,6 +21,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,9 +66,11 @@ namespace PeriDEAL
      *   analytical solution (relative l2 norm, paper Eq. 66, over the free
      *   nodes); a progress line on rank 0.
      *
-     * The sources by job: diffusion.cc (run, set-up, time steps, the
-     * explicit instantiation and the registration), diffusion_parameters.cc
-     * (the input), diffusion_layers.cc (the layers and sources),
+     * The sources by job: diffusion.cc (run, set-up, time step choice,
+     * the explicit instantiation and the registration),
+     * diffusion_integrators.cc (forward Euler, θ-scheme, steady state:
+     * DiffusionIntegrators), diffusion_parameters.cc (the input),
+     * diffusion_layers.cc (the layers and sources),
      * diffusion_solve.cc (the linear solves and the local Laplacian),
      * diffusion_checks.cc (non-finite states and solves) and
      * diffusion_output.cc (history, progress line, PVTU and CSV).
@@ -123,7 +127,8 @@ namespace PeriDEAL
       bool
       couples_two_horizons(const Models::Model<dim> *) const override
       {
-        return layer_values == "mirror" || flux_values == "mirror";
+        return layer_values == LayerValues::mirror ||
+               flux_values == FluxValues::mirror;
       }
 
     protected:
@@ -134,23 +139,30 @@ namespace PeriDEAL
       }
 
     private:
+      // The time integrators take the steps on this problem's state.
+      friend class DiffusionIntegrators::ForwardEuler<dim>;
+      friend class DiffusionIntegrators::ThetaScheme<dim>;
+      friend class DiffusionIntegrators::SteadyState<dim>;
+
       /// The input subsection, which error messages name entries by.
       static inline const std::string section = "diffusion";
 
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
-      /// 'Time stepping', parsed once in parse_parameters().
-      enum class Stepping
+      /// 'Dirichlet layer values', parsed once in parse_parameters().
+      enum class LayerValues
       {
-        explicit_euler,
-        implicit,
-        steady_state
+        function,
+        surface_value,
+        mirror
       };
 
-      /// The input text of @p value ('explicit', 'implicit', 'steady
-      /// state'), for messages (diffusion_parameters.cc).
-      static std::string
-      stepping_name(const Stepping value);
+      /// 'Flux layer values', parsed once in parse_parameters().
+      enum class FluxValues
+      {
+        source,
+        mirror
+      };
 
       void
       setup(Simulator<dim> &simulator);
@@ -177,9 +189,6 @@ namespace PeriDEAL
       void
       evaluate_source(const double t, VectorType &s) const;
 
-      void
-      explicit_step(Simulator<dim> &simulator);
-
       /**
        * Solve \f$(\alpha I - \beta L)\,x = b\f$ on the free nodes, x given at
        * the Dirichlet nodes (initial guess elsewhere). Returns the
@@ -192,8 +201,10 @@ namespace PeriDEAL
             const VectorType &rhs,
             VectorType       &x);
 
+      /// The step count by one and the time with it (the last step ends
+      /// at 'End time' exactly).
       void
-      implicit_step(Simulator<dim> &simulator);
+      advance_time();
 
       /// Assemble the local Laplacian preconditioner for alpha, beta.
       void
@@ -252,17 +263,19 @@ namespace PeriDEAL
                          const VectorType &x) const;
 
       /// What the diffusion model works on (after setup()).
-      Models::DiffusionSetup<dim>
-      model_setup(Simulator<dim> &simulator);
+      const Models::DiffusionSetup<dim> &
+      model_setup() const;
 
       // Input.
-      Models::DiffusionKernel                      kernel;
-      std::string                                  model_name   = "none";
-      std::string                                  layer_values = "function";
-      std::string                                  flux_values  = "source";
+      Models::DiffusionKernel kernel;
+      std::string             model_name   = "none";
+      LayerValues             layer_values = LayerValues::function;
+      FluxValues              flux_values  = FluxValues::source;
+      /// The two selections as given, for messages.
+      std::string layer_values_text, flux_values_text;
       std::unique_ptr<Models::DiffusionModel<dim>> model;
-      Stepping                        stepping = Stepping::explicit_euler;
-      double                          theta    = 1;
+      /// 'Time stepping', chosen once in parse_parameters().
+      std::unique_ptr<DiffusionIntegrators::Integrator<dim>> integrator;
       double                          end_time = 1, given_time_step = 0;
       double                          safety_factor   = 0.9;
       bool                            allow_unstable  = false;
@@ -298,7 +311,10 @@ namespace PeriDEAL
       Discretization::BondState<dim>      bond_state;
       Operators::DiffusionOperator<dim>   op;
       double                              horizon = 0;
-      std::vector<unsigned int>           dirichlet_nodes; // owned
+      /// Node i of the set's index in the vectors, for the model.
+      std::vector<unsigned int>                  vector_index;
+      std::optional<Models::DiffusionSetup<dim>> model_view;
+      std::vector<unsigned int>                  dirichlet_nodes; // owned
       /// Per Dirichlet node: the nearest point of the physical surface (the
       /// inner face of the layer).
       std::vector<Point<dim>> surface_points;
