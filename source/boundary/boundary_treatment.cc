@@ -27,6 +27,12 @@ namespace PeriDEAL
           return 0;
         }
 
+        bool
+        body_nodes_only() const override
+        {
+          return true;
+        }
+
         std::unique_ptr<DiscreteSystem<2>>
         make_system_2d(const std::string &) const override
         {

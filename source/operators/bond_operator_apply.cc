@@ -75,42 +75,25 @@ namespace PeriDEAL
         },
         LoopLayout<dim>::chunk_grain);
 
-      layout.for_each_node_of(
-        theta_work().list_nodes,
-        [&](const unsigned int i, const std::size_t si) {
-          double theta = 0;
-          if (layout.use_lattice)
-            {
-              for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
-                   ++b)
-                {
-                  const unsigned int k  = layout.list_stencil_index[b];
-                  const std::size_t  sj = si + layout.stencil_offset[k];
-                  const double       e  = BondKernel::linear_extension<dim>(
-                    [&](const unsigned int d) { return stencil.n[d][k]; },
-                    [&](const unsigned int d) {
-                      return u_slot[d][sj] - u_slot[d][si];
-                    });
-                  theta += stencil.g[k] * e;
-                }
-              theta *= list_theta_scale[i];
-            }
-          else
-            for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
-                 ++b)
-              {
-                const ListBond   &bond = list_bonds[b];
-                const std::size_t sj   = bond.neighbor_slot;
-                const double      e =
-                  BondKernel::linear_extension<dim>(bond.n,
-                                                    [&](const unsigned int d) {
-                                                      return u_slot[d][sj] -
-                                                             u_slot[d][si];
-                                                    });
-                theta += bond.g * e;
-              }
-          t_slot[si] = s_slot[si] * theta;
-        });
+      layout.for_each_node_of(theta_work().list_nodes,
+                              [&](const unsigned int i, const std::size_t si) {
+                                double theta = 0;
+                                for_each_linear_list_bond(
+                                  i,
+                                  si,
+                                  [&](const std::size_t,
+                                      const auto &,
+                                      const double g,
+                                      const double,
+                                      const double,
+                                      const double e)
+                                    PERIDEAL_BOND_KERNEL_INLINE_LAMBDA {
+                                      theta += g * e;
+                                    });
+                                if (layout.use_lattice)
+                                  theta *= list_theta_scale[i];
+                                t_slot[si] = s_slot[si] * theta;
+                              });
     }
 
 
@@ -195,56 +178,33 @@ namespace PeriDEAL
         },
         LoopLayout<dim>::chunk_grain);
 
-      layout.for_each_node_of(
-        force_work().list_nodes,
-        [&](const unsigned int i, const std::size_t si) {
-          double f[dim] = {};
-          if (layout.use_lattice)
-            for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
-                 ++b)
-              {
-                const unsigned int k  = layout.list_stencil_index[b];
-                const std::size_t  sj = si + layout.stencil_offset[k];
-                const double       e  = BondKernel::linear_extension<dim>(
-                  [&](const unsigned int d) { return stencil.n[d][k]; },
-                  [&](const unsigned int d) {
-                    return u_slot[d][sj] - u_slot[d][si];
-                  });
-                const double t = BondKernel::pair_force(stencil.a[k],
-                                                        t_slot[si],
-                                                        t_slot[sj],
-                                                        stencil.b[k],
-                                                        s_slot[si],
-                                                        s_slot[sj],
-                                                        e);
-                for (unsigned int d = 0; d < dim; ++d)
-                  f[d] += t * stencil.n[d][k];
-              }
-          else
-            for (std::size_t b = layout.list_first[i]; b < layout.list_end[i];
-                 ++b)
-              {
-                const ListBond   &bond = list_bonds[b];
-                const std::size_t sj   = bond.neighbor_slot;
-                const double      e =
-                  BondKernel::linear_extension<dim>(bond.n,
-                                                    [&](const unsigned int d) {
-                                                      return u_slot[d][sj] -
-                                                             u_slot[d][si];
-                                                    });
-                const double t = BondKernel::pair_force(bond.a,
-                                                        t_slot[si],
-                                                        t_slot[sj],
-                                                        bond.b,
-                                                        s_slot[si],
-                                                        s_slot[sj],
-                                                        e);
-                for (unsigned int d = 0; d < dim; ++d)
-                  f[d] += t * bond.n[d];
-              }
-          for (unsigned int d = 0; d < dim; ++d)
-            f_slot[d][si] = f[d];
-        });
+      layout.for_each_node_of(force_work().list_nodes,
+                              [&](const unsigned int i, const std::size_t si) {
+                                double f[dim] = {};
+                                for_each_linear_list_bond(
+                                  i,
+                                  si,
+                                  [&](const std::size_t sj,
+                                      const auto       &n,
+                                      const double,
+                                      const double a,
+                                      const double b,
+                                      const double e)
+                                    PERIDEAL_BOND_KERNEL_INLINE_LAMBDA {
+                                      const double t =
+                                        BondKernel::pair_force(a,
+                                                               t_slot[si],
+                                                               t_slot[sj],
+                                                               b,
+                                                               s_slot[si],
+                                                               s_slot[sj],
+                                                               e);
+                                      for (unsigned int d = 0; d < dim; ++d)
+                                        f[d] += t * n(d);
+                                    });
+                                for (unsigned int d = 0; d < dim; ++d)
+                                  f_slot[d][si] = f[d];
+                              });
     }
 
 

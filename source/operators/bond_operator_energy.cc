@@ -8,6 +8,7 @@
 
 #include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/bond_operator.h>
+#include <perideal/operators/bond_operator.templates.h>
 
 namespace PeriDEAL
 {
@@ -69,17 +70,12 @@ namespace PeriDEAL
                   layout.for_each_stencil_index(i, visit);
                 }
               else
-                for (std::size_t b = layout.list_first[i];
-                     b < layout.list_end[i];
-                     ++b)
-                  {
-                    const ListBond &bond = list_bonds[b];
-                    double          xi[dim];
-                    for (unsigned int d = 0; d < dim; ++d)
-                      xi[d] = bond.n[d] * bond.r;
+                for_each_list_bond(
+                  i,
+                  [&](const ListBond &bond, const double *xi) {
                     bonds +=
                       term(si, bond.neighbor_slot, xi, bond.n, bond.r, bond.b);
-                  }
+                  });
               sum += 0.5 * s_slot[si] * bonds +
                      0.5 * (*nodes)[i].volume() * lambda * theta[i] * theta[i];
             }

@@ -51,7 +51,7 @@ namespace PeriDEAL
           if (!(layout.use_lattice && lists->has_full_stencil(i)))
             {
               const Point<dim> &x = (*nodes)[i].location;
-              for_each_bond(
+              lists->for_each_bond(
                 i,
                 [&](const unsigned int, const unsigned int j, const double w) {
                   stored_bonds.push_back(
@@ -72,37 +72,6 @@ namespace PeriDEAL
       std::fill(c_slot.begin(), c_slot.end(), 0.);
       std::fill(r_slot.begin(), r_slot.end(), 0.);
       build_work_lists();
-    }
-
-
-    template <int dim>
-    template <typename Function>
-    void
-    DiffusionOperator<dim>::for_each_bond(const unsigned int i,
-                                          const Function    &f) const
-    {
-      if (lists->has_full_stencil(i))
-        {
-          const auto  &lattice = lists->lattice();
-          const double volume  = std::pow(lattice.spacing(), dim);
-          const auto  &x       = lattice.coordinates(i);
-          const auto  &offsets = lists->stencil();
-          for (unsigned int k = 0; k < offsets.size(); ++k)
-            {
-              std::array<std::int64_t, dim> y = x;
-              for (unsigned int d = 0; d < dim; ++d)
-                y[d] += offsets[k].offset[d];
-              f(k,
-                static_cast<unsigned int>(lattice.node_at(y)),
-                offsets[k].beta * volume);
-            }
-        }
-      else
-        {
-          const auto bonds = lists->bonds(i);
-          for (unsigned int k = 0; k < bonds.size(); ++k)
-            f(k, bonds[k].neighbor, bonds[k].weight);
-        }
     }
 
 

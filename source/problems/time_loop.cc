@@ -14,15 +14,17 @@ namespace PeriDEAL
   namespace Problems
   {
     void
-    check_time_stepping_setup(const std::string &problem,
-                              const std::string &treatment,
-                              const std::string &node_data_file)
+    check_time_stepping_setup(const std::string                 &problem,
+                              const Boundary::BoundaryTreatment &treatment,
+                              const std::string                 &treatment_name,
+                              const std::string                 &node_data_file)
     {
-      AssertThrow(treatment == "none",
+      AssertThrow(treatment.body_nodes_only(),
                   ExcInvalidInput("Boundary treatment/Treatment",
-                                  treatment,
-                                  problem + " supports the 'none' "
-                                            "treatment only so far"));
+                                  treatment_name,
+                                  problem + " steps the body's own nodes only "
+                                            "so far: use a treatment that "
+                                            "adds no nodes ('none')"));
       AssertThrow(node_data_file.empty(),
                   ExcInvalidInput("Output/Node data file",
                                   node_data_file,
@@ -140,6 +142,17 @@ namespace PeriDEAL
     void
     TimeLoop::declare_parameters(ParameterHandler &prm)
     {
+      prm.declare_entry("Output every steps",
+                        "0",
+                        Patterns::Integer(0),
+                        "Write PVTU output every this many steps (and at the "
+                        "first and last step). 0: use 'Output interval'.");
+      prm.declare_entry("Output interval",
+                        "0",
+                        Patterns::Double(0),
+                        "Write PVTU output every this much simulated time. "
+                        "0 (and 'Output every steps = 0'): only at the first "
+                        "and last step.");
       prm.declare_entry(
         "Maximum number of steps",
         "1e9",
@@ -194,11 +207,11 @@ namespace PeriDEAL
           const std::string count =
             std::isfinite(n) ? number(n) : "infinitely many";
           const std::string to_end = " takes " + count + " steps to '" +
-                                     section +
-                                     "/End time' = " + end_time_text + unit;
+                                     section + "/End time' = " + end_time_text +
+                                     unit;
           const std::string more =
-            ", more than '" + section + "/Maximum number of steps' = " +
-            max_steps_text + "; ";
+            ", more than '" + section +
+            "/Maximum number of steps' = " + max_steps_text + "; ";
           const std::string raise =
             ", or raise 'Maximum number of steps' if the run really needs "
             "that many steps";
@@ -207,18 +220,18 @@ namespace PeriDEAL
             {
               entry = section + "/Time step";
               value = time_step_text;
-              text  = "a step of " + time_step_text + unit + to_end + more +
-                     "give a larger step" +
-                     (std::isfinite(bound.value) ?
-                        " (" + bound.description + ")" :
-                        std::string()) +
-                     " or a shorter 'End time'" + raise;
+              text =
+                "a step of " + time_step_text + unit + to_end + more +
+                "give a larger step" +
+                (std::isfinite(bound.value) ? " (" + bound.description + ")" :
+                                              std::string()) +
+                " or a shorter 'End time'" + raise;
             }
           else
             {
-              text = "a step of " + number(wanted) + unit + " ('Safety factor' " +
-                     safety_factor_text + " times " + bound.description + ")" +
-                     to_end + more;
+              text = "a step of " + number(wanted) + unit +
+                     " ('Safety factor' " + safety_factor_text + " times " +
+                     bound.description + ")" + to_end + more;
               if (!bound.entry.empty())
                 {
                   entry = bound.entry;
@@ -246,15 +259,15 @@ namespace PeriDEAL
       plan.dt      = end_time / static_cast<double>(plan.n_steps);
       // Every step taken must respect the bound, not only the one asked
       // for.
-      AssertThrow(allow_unstable || plan.dt <= bound.value,
-                  ExcInvalidInput(
-                    section + (given ? "/Time step" : "/Safety factor"),
-                    given ? time_step_text : safety_factor_text,
-                    "the step taken, 'End time' / " + format_number(n) +
-                      " = " + number(plan.dt) + unit + ", exceeds " +
-                      bound.description +
-                      "; give a smaller step, or set 'Allow unstable time "
-                      "step = true'"));
+      AssertThrow(
+        allow_unstable || plan.dt <= bound.value,
+        ExcInvalidInput(section + (given ? "/Time step" : "/Safety factor"),
+                        given ? time_step_text : safety_factor_text,
+                        "the step taken, 'End time' / " + format_number(n) +
+                          " = " + number(plan.dt) + unit + ", exceeds " +
+                          bound.description +
+                          "; give a smaller step, or set 'Allow unstable time "
+                          "step = true'"));
       return plan;
     }
 
@@ -268,8 +281,7 @@ namespace PeriDEAL
                   ExcInvalidInput(
                     section + "/Output interval",
                     interval_text,
-                    "it is shorter than the time step, " + number(dt) +
-                      unit +
+                    "it is shorter than the time step, " + number(dt) + unit +
                       ", and output is written at steps only; give an "
                       "interval of at least one step, 0 for none, or "
                       "'Output every steps = 1' for output at every step"));
@@ -346,7 +358,8 @@ namespace PeriDEAL
         << " (evaluated at t = " << t << unit
         << "); give an expression that is finite whenever the run evaluates "
            "it";
-      AssertThrow(false, ExcInvalidInput(entry.name, entry.expression, s.str()));
+      AssertThrow(false,
+                  ExcInvalidInput(entry.name, entry.expression, s.str()));
     }
 
 
@@ -416,9 +429,8 @@ namespace PeriDEAL
         {
           std::ostringstream s;
           s << quantity << " is not finite at step " << step << " (t = " << time
-            << unit << ") at the node at (" << nodes[bad_node].location
-            << "). " << advice
-            << " The output written before this step is complete.";
+            << unit << ") at the node at (" << nodes[bad_node].location << "). "
+            << advice << " The output written before this step is complete.";
           message = s.str();
         }
       throw_on_any_rank(message, comm);
@@ -502,7 +514,7 @@ namespace PeriDEAL
       const double balance = kinetic + elastic - external_work - verlet_term;
       const double energy =
         std::max({scale, kinetic + elastic, std::abs(external_work)});
-      const double rise    = balance - lowest;
+      const double rise = balance - lowest;
       // The sums are the same on every process; the decision is reduced
       // all the same, so that no process can go on alone.
       const bool grew =
@@ -515,14 +527,14 @@ namespace PeriDEAL
       std::ostringstream s;
       s << "The energy balance (kinetic + elastic energy - external work) "
            "rose to "
-        << balance << " at step " << step << " (t = " << time << " s), "
-        << rise << " above its lowest value " << before
+        << balance << " at step " << step << " (t = " << time << " s), " << rise
+        << " above its lowest value " << before
         << " (both less velocity Verlet's own dt^2/8 sum m|a|^2): "
         << rise / energy
         << " of the largest kinetic + elastic energy or external work so "
            "far ("
-        << energy << "), more than '" << section << "/Energy balance tolerance' = "
-        << tolerance
+        << energy << "), more than '" << section
+        << "/Energy balance tolerance' = " << tolerance
         << ". Broken bonds only lower the balance, so the run made energy: "
            "a time step that is not stable ('"
         << section << "/Time step'; stability bound " << dt_bound
@@ -569,15 +581,15 @@ namespace PeriDEAL
                    const std::string &,
                    const unsigned int,
                    FunctionEntry *);
-#define PERIDEAL_INSTANTIATE(dim)                                 \
-  template void FiniteCheck::check_state(                         \
-    const Discretization::NodeSet<dim> &,                         \
-    const std::vector<std::pair<const double *, std::size_t>> &,  \
-    const std::function<bool(unsigned int)> &,                    \
-    const std::uint64_t,                                          \
-    const double,                                                 \
-    const std::string &,                                          \
-    const std::string &,                                          \
+#define PERIDEAL_INSTANTIATE(dim)                                \
+  template void FiniteCheck::check_state(                        \
+    const Discretization::NodeSet<dim> &,                        \
+    const std::vector<std::pair<const double *, std::size_t>> &, \
+    const std::function<bool(unsigned int)> &,                   \
+    const std::uint64_t,                                         \
+    const double,                                                \
+    const std::string &,                                         \
+    const std::string &,                                         \
     const MPI_Comm);
     PERIDEAL_INSTANTIATE(1)
     PERIDEAL_INSTANTIATE(2)

@@ -123,7 +123,7 @@ group_basic() {
   expect_error 's/set Dirichlet boundary ids = 0/set Dirichlet boundary ids = 0\n  set Safety factor = 1.5/' \
     "Invalid value '1.5' for the parameter 'diffusion/Safety factor'"
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/' \
-    "Invalid value 'fictitious layer' for the parameter 'Boundary treatment/Treatment': the diffusion problem supports the 'none' treatment only"
+    "Invalid value 'fictitious layer' for the parameter 'Boundary treatment/Treatment': the diffusion problem steps the body's own nodes only"
 
   # Output names that meet: one output would overwrite or delete another. 1D
   # corrosion.

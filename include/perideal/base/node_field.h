@@ -10,8 +10,8 @@ namespace PeriDEAL
    * A scalar field with one value per owned node, in the order of
    * NodeSet's owned nodes, and its name in the output. It lives below io/
    * so that models can describe their output fields without depending on
-   * the writer; the problem type hands them to IO::SolutionOutput as
-   * IO::NodeField (the same members).
+   * the writer; IO::NodeField, which IO::SolutionOutput writes, is this
+   * type.
    */
   struct NodeField
   {

@@ -62,6 +62,18 @@ namespace PeriDEAL
       taylor_order() const = 0;
 
       /**
+       * Whether the body's own nodes are the only nodes of the system (no
+       * fictitious or surface nodes, no unknowns added): the time-stepping
+       * problem types step the body's nodes, so they accept only a
+       * treatment that says so. Default: false.
+       */
+      virtual bool
+      body_nodes_only() const
+      {
+        return false;
+      }
+
+      /**
        * A new discrete system of a 2D body with this treatment, not yet set
        * up: the problem type then drives it with the run's SystemContext
        * (DiscreteSystem::setup(), solve_linear()). @p treatment_name is the

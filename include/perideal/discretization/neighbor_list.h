@@ -8,6 +8,9 @@
 #include <perideal/quadrature/partial_volume.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace PeriDEAL
@@ -100,6 +103,17 @@ namespace PeriDEAL
       bonds(const unsigned int i) const;
 
       /**
+       * Call f(k, j, w) for every bond of node @p i, in the order bonds are
+       * numbered (BondState): its index k, the neighbour j and the weight
+       * w = beta V_j. A node with a full stencil enumerates the stencil
+       * (needs its lattice neighbours in the node set), any other node its
+       * stored list. Not for hot loops (a lattice lookup per bond).
+       */
+      template <typename Function>
+      void
+      for_each_bond(const unsigned int i, const Function &f) const;
+
+      /**
        * On a uniform grid: every lattice offset with a non-zero
        * coefficient, in lexicographic order (empty otherwise).
        */
@@ -139,6 +153,35 @@ namespace PeriDEAL
       std::vector<int>                             offset_to_stencil;
       int                                          stencil_bound = 0;
     };
+
+
+    template <int dim>
+    template <typename Function>
+    void
+    NeighborList<dim>::for_each_bond(const unsigned int i,
+                                     const Function    &f) const
+    {
+      if (has_full_stencil(i))
+        {
+          const double volume = std::pow(grid.spacing(), dim);
+          const auto  &x      = grid.coordinates(i);
+          for (unsigned int k = 0; k < full_stencil.size(); ++k)
+            {
+              std::array<std::int64_t, dim> y = x;
+              for (unsigned int d = 0; d < dim; ++d)
+                y[d] += full_stencil[k].offset[d];
+              f(k,
+                static_cast<unsigned int>(grid.node_at(y)),
+                full_stencil[k].beta * volume);
+            }
+        }
+      else
+        {
+          const auto list = bonds(i);
+          for (unsigned int k = 0; k < list.size(); ++k)
+            f(k, list[k].neighbor, list[k].weight);
+        }
+    }
   } // namespace Discretization
 } // namespace PeriDEAL
 

@@ -7,6 +7,7 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <perideal/base/node_field.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/output_names.h>
 
@@ -23,15 +24,9 @@ namespace PeriDEAL
   {
     using namespace dealii;
 
-    /**
-     * A scalar field with one value per owned node, in the order of
-     * NodeSet's owned nodes, and its name in the output.
-     */
-    struct NodeField
-    {
-      std::string         name;
-      std::vector<double> values;
-    };
+    /// A scalar field per owned node and its name (PeriDEAL::NodeField, in
+    /// base/ so that models can describe their fields without the writer).
+    using NodeField = PeriDEAL::NodeField;
 
     /**
      * Writes a PD solution as VTU pieces (one per process) with a PVTU

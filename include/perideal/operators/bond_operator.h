@@ -10,6 +10,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
+#include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/loop_layout.h>
 
 #include <array>
@@ -294,6 +295,41 @@ namespace PeriDEAL
         double                               node_factor = 0;
       };
 
+      /// Raw views of the stencil's constants and the slot arrays, for the
+      /// gather loops of the list nodes.
+      struct GatherViews
+      {
+        const std::uint16_t  *index;
+        const std::ptrdiff_t *offset;
+        const double         *r, *inv_r, *g, *a, *b, *t, *s, *s0;
+        const double         *xi[dim], *n[dim], *u[dim];
+      };
+
+      GatherViews
+      gather_views() const
+      {
+        GatherViews v{layout.list_stencil_index.data(),
+                      layout.stencil_offset.data(),
+                      stencil.r.data(),
+                      stencil.inv_r.data(),
+                      stencil.g.data(),
+                      stencil.a.data(),
+                      stencil.b.data(),
+                      t_slot.data(),
+                      s_slot.data(),
+                      s0_slot.data(),
+                      {},
+                      {},
+                      {}};
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            v.xi[d] = stencil.xi[d].data();
+            v.n[d]  = stencil.n[d].data();
+            v.u[d]  = u_slot[d].data();
+          }
+        return v;
+      }
+
       const Discretization::NodeSet<dim>      *nodes        = nullptr;
       const Discretization::NeighborList<dim> *lists        = nullptr;
       const Models::Model<dim>                *model        = nullptr;
@@ -370,6 +406,48 @@ namespace PeriDEAL
       template <typename Function>
       void
       for_each_intact_bond(const unsigned int i, const Function &f) const;
+
+      /// Off the lattice: call f(bond, xi) for every list bond of node i,
+      /// with xi = r n its reference bond vector.
+      template <typename Function>
+      void
+      for_each_list_bond(const unsigned int i, const Function &f) const;
+
+      /**
+       * The vectorised sweep of a nonlinear pass: f(block, found) for every
+       * masked chunk of the shared stencil and every run of @p pass
+       * (LoopLayout::sweep_chunks_and_runs()), threaded, with the
+       * subrange's list of bonds found over their critical stretch,
+       * recorded once per subrange (record_exceeded()).
+       */
+      template <typename Function>
+      void
+      sweep_blocks(const Pass &pass, const Function &f) const;
+
+      /**
+       * The gather loop of a nonlinear pass: f(i, si, views, failed, found)
+       * for every gather node i of @p pass (slot si), threaded, with
+       * gather_views(), a scratch array @p failed of one entry per stencil
+       * offset (on the lattice) and the subrange's list of bonds found over
+       * their critical stretch, recorded once per subrange
+       * (record_exceeded()).
+       */
+      template <typename Function>
+      void
+      for_each_gather_node(const Pass &pass, const Function &f) const;
+
+      /**
+       * Call f(sj, n, g, a, b, e) for every list bond of node i (slot
+       * @p si), on the lattice or off it: the neighbour's slot, the bond's
+       * direction (n(d): its d-th component), its constants and its
+       * small-strain extension e = n . (u_j - u_i). (On the lattice g is
+       * the stencil's, without the node's list_theta_scale.)
+       */
+      template <typename Function>
+      PERIDEAL_BOND_KERNEL_INLINE void
+      for_each_linear_list_bond(const unsigned int i,
+                                const std::size_t  si,
+                                const Function    &f) const;
 
       /**
        * Call f(slot_j, key, n, g, a, b) for every intact bond of node i

@@ -179,12 +179,6 @@ namespace PeriDEAL
         double        flow; // fixed flow rho mu into the node
       };
 
-      /// Call f(k, j, w) for every bond (intact or not) of node i: bond
-      /// index, neighbour, partial volume.
-      template <typename Function>
-      void
-      for_each_bond(const unsigned int i, const Function &f) const;
-
       void
       build_work_lists();
 

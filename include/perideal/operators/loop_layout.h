@@ -112,6 +112,22 @@ namespace PeriDEAL
           return (mask_low != nullptr ? mask_low[k] >> shift : 0) |
                  (mask_high != nullptr ? mask_high[k] << (64 - shift) : 0);
         }
+
+        /**
+         * broken(k) (0 where the block has no mask), and where it is not 0
+         * its bits as @p gone[l] = 0 or 1 for the block's lanes: a test the
+         * lane loops vectorise, which a bit test is not.
+         */
+        std::uint64_t
+        broken_lanes(const std::size_t k, double *gone) const
+        {
+          const bool masked = mask_low != nullptr || mask_high != nullptr;
+          const std::uint64_t bits = masked ? broken(k) : 0;
+          if (bits != 0)
+            for (unsigned int l = 0; l < length; ++l)
+              gone[l] = double((bits >> l) & 1);
+          return bits;
+        }
       };
 
       /**
@@ -181,6 +197,42 @@ namespace PeriDEAL
         return use_lattice ?
                  static_cast<unsigned int>(lists->lattice().node_at_slot(s)) :
                  static_cast<unsigned int>(s);
+      }
+
+      /**
+       * Append (node of slot s0 + l, node of slot s0 + l + o) to @p found
+       * for each lane l < @p length with @p failed[l] != 0: the bonds a lane
+       * loop over the offset with slot offset @p o found failed.
+       */
+      template <typename Pair>
+      void
+      add_failed_lanes(const double        *failed,
+                       const std::size_t    s0,
+                       const unsigned int   length,
+                       const std::ptrdiff_t o,
+                       std::vector<Pair>   &found) const
+      {
+        for (unsigned int l = 0; l < length; ++l)
+          if (failed[l] != 0)
+            found.emplace_back(node_of_slot(s0 + l), node_of_slot(s0 + l + o));
+      }
+
+      /**
+       * On the lattice: append (i, neighbour) to @p found for each list bond
+       * b of node @p i (slot @p si) with @p failed[b - list_first[i]] != 0.
+       */
+      template <typename Pair>
+      void
+      add_failed_list_bonds(const unsigned int i,
+                            const std::size_t  si,
+                            const double      *failed,
+                            std::vector<Pair> &found) const
+      {
+        for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
+          if (failed[b - list_first[i]] != 0)
+            found.emplace_back(i,
+                               node_of_slot(
+                                 si + stencil_offset[list_stencil_index[b]]));
       }
 
       /// The shared stencil's number of offsets (0 off the lattice).

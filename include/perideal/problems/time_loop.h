@@ -7,6 +7,7 @@
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/point.h>
 
+#include <perideal/boundary/boundary_treatment.h>
 #include <perideal/discretization/node_set.h>
 
 #include <cmath>
@@ -107,15 +108,17 @@ namespace PeriDEAL
 
     /**
      * The schedule of a time-dependent run: reads the entries 'End time',
-     * 'Time step', 'Safety factor', 'Allow unstable time step', 'Output
-     * interval' (declared by the problem type) and 'Maximum number of steps'
+     * 'Time step', 'Safety factor', 'Allow unstable time step' (declared by
+     * the problem type), 'Output interval' and 'Maximum number of steps'
      * (declared here) of the problem's subsection, plans the steps and
      * checks the output interval.
      */
     class TimeLoop
     {
     public:
-      /// Declare 'Maximum number of steps' in the current subsection.
+      /// Declare 'Output every steps', 'Output interval' (the output
+      /// schedule of every time-stepping problem) and 'Maximum number of
+      /// steps' in the current subsection.
       static void
       declare_parameters(ParameterHandler &prm);
 
@@ -198,14 +201,17 @@ namespace PeriDEAL
 
     /**
      * Refuse what the time-stepping problem types do not support yet: a
-     * 'Boundary treatment/Treatment' @p treatment other than `none`, and an
+     * 'Boundary treatment/Treatment' (@p treatment, named @p treatment_name
+     * in the input) that adds nodes to the body's
+     * (Boundary::BoundaryTreatment::body_nodes_only()), and an
      * 'Output/Node data file' @p node_data_file (written by the quasi-static
      * problem only). @p problem names the problem type in the message
      * ("explicit dynamics", "the diffusion problem").
      */
     void
-    check_time_stepping_setup(const std::string &problem,
-                              const std::string &treatment,
+    check_time_stepping_setup(const std::string                 &problem,
+                              const Boundary::BoundaryTreatment &treatment,
+                              const std::string                 &treatment_name,
                               const std::string &node_data_file);
 
 
@@ -273,15 +279,15 @@ namespace PeriDEAL
        */
       template <int dim>
       void
-      check_state(const Discretization::NodeSet<dim>           &nodes,
-                  const std::vector<std::pair<const double *, std::size_t>>
-                                                           &arrays,
-                  const std::function<bool(unsigned int)> &finite_at,
-                  const std::uint64_t                      step,
-                  const double                             time,
-                  const std::string                       &quantity,
-                  const std::string                       &advice,
-                  const MPI_Comm                           comm);
+      check_state(
+        const Discretization::NodeSet<dim>                        &nodes,
+        const std::vector<std::pair<const double *, std::size_t>> &arrays,
+        const std::function<bool(unsigned int)>                   &finite_at,
+        const std::uint64_t                                        step,
+        const double                                               time,
+        const std::string                                         &quantity,
+        const std::string                                         &advice,
+        const MPI_Comm                                             comm);
 
     private:
       /// The message for the pending value, in step @p step (0: at set-up).
@@ -359,7 +365,7 @@ namespace PeriDEAL
 
     private:
       std::string section;
-      double      tolerance = 0.1;
+      double      tolerance    = 0.1;
       bool        allow_growth = false, warned = false;
       /// Rows seen; the lowest balance; the largest kinetic + elastic.
       std::uint64_t n_rows = 0;

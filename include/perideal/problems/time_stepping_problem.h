@@ -15,7 +15,8 @@ namespace PeriDEAL
      * What the time-stepping problem types (explicit dynamics, diffusion)
      * share as problem types: they step with their own integrator, so they
      * solve nothing with the simulator's 'Linear solver', and they support
-     * the `none` boundary treatment only and write no node data file
+     * only a boundary treatment that adds no nodes (`none`) and write no
+     * node data file
      * (check_time_stepping_setup()). The rest of their loop is shared
      * through time_loop.h.
      */
@@ -29,6 +30,7 @@ namespace PeriDEAL
       check_input(const Simulator<dim> &simulator) const override
       {
         check_time_stepping_setup(label(),
+                                  simulator.get_boundary_treatment(),
                                   simulator.get_boundary_treatment_name(),
                                   simulator.get_node_data_file());
       }

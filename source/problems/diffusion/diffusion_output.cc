@@ -142,7 +142,7 @@ namespace PeriDEAL
           if (compare)
             fields.push_back(error);
           for (auto &field : model->node_fields(model_setup(), c))
-            fields.push_back({field.name, std::move(field.values)});
+            fields.push_back(std::move(field));
           const std::string record = output.write(simulator.get_dof_handler(),
                                                   *nodes,
                                                   fields,

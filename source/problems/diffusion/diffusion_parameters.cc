@@ -145,17 +145,6 @@ namespace PeriDEAL
                         "concentration' (relative l2 norm over the free "
                         "nodes and the largest nodal error).");
       declare_function("Analytical concentration");
-      prm.declare_entry("Output every steps",
-                        "0",
-                        Patterns::Integer(0),
-                        "Write PVTU output every this many steps (and at the "
-                        "first and last step). 0: use 'Output interval'.");
-      prm.declare_entry("Output interval",
-                        "0",
-                        Patterns::Double(0),
-                        "Write PVTU output every this much simulated time; 0 "
-                        "(with 'Output every steps = 0'): first and last "
-                        "step only.");
       prm.declare_entry("History every steps",
                         "10",
                         Patterns::Integer(1),

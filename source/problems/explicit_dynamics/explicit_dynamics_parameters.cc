@@ -107,17 +107,6 @@ namespace PeriDEAL
                         "displacement of the node nearest to each is added "
                         "to every row of the energy file (columns "
                         "probe<k>_u<c>).");
-      prm.declare_entry("Output every steps",
-                        "0",
-                        Patterns::Integer(0),
-                        "Write PVTU output every this many steps (and at the "
-                        "first and last step). 0: use 'Output interval'.");
-      prm.declare_entry("Output interval",
-                        "0",
-                        Patterns::Double(0),
-                        "Write PVTU output every this much simulated time. "
-                        "0 (and 'Output every steps = 0'): only at the first "
-                        "and last step.");
       prm.declare_entry("Energy every steps",
                         "10",
                         Patterns::Integer(1),
