@@ -21,6 +21,8 @@ relative error) and exits 1 if any relative error exceeds 1e-10.
     /usr/bin/python3 bench/collocation/check_moments.py --verbose    # every entry
     /usr/bin/python3 bench/collocation/check_moments.py --conditioning
         # the table behind the choice of n_c (condition numbers, symbol error)
+    /usr/bin/python3 bench/collocation/check_moments.py --example2-spectrum
+        # the spectrum of the collocation operator of the paper's Example 2
 
 Only numpy, scipy and mpmath.  Units: lengths in units of h = 1 where a grid
 is involved; the closed forms hold for any delta (checked at delta != 1).
@@ -604,6 +606,77 @@ def dilatation_poly(u, T, basis):
     return th
 
 
+def poly_deriv(terms, axis):
+    out = {}
+    for a, v in terms.items():
+        if a[axis]:
+            b = tuple(e - (i == axis) for i, e in enumerate(a))
+            out[b] = out.get(b, 0.0) + v * a[axis]
+    return out
+
+
+def poly_eval(terms, x):
+    return sum(v * np.prod(np.asarray(x, float) ** np.array(a)) for a, v in terms.items())
+
+
+def poly_add(*ts):
+    out = {}
+    for t in ts:
+        for a, v in t.items():
+            out[a] = out.get(a, 0.0) + v
+    return out
+
+
+def poly_lap(terms, d):
+    return poly_add(*[poly_deriv(poly_deriv(terms, i), i) for i in range(d)])
+
+
+def check_operator_forms(rep, rng):
+    """The tensor forms of the doc for a quartic field u:
+    bond-based  f = mu (Lap u + 2 grad div u)
+                    + mu l_B^2 (Lap^2 u + 4 grad Lap div u),  l_B^2 = delta^2 M_(d+2) / (4 (d+4) M_d);
+    LPS         theta = (1 + l_T^2 Lap) div u,                  l_T^2 = delta^2 M_(d+3) / (2 (d+2) M_(d+1)),
+                f = mu (Lap u + 2 grad div u) + (c_K/d) (1 + 2 l_T^2 Lap) grad div u
+                    + mu l_G^2 (Lap^2 u + 4 grad Lap div u),  l_G^2 = delta^2 M_(d+3) / (4 (d+4) M_(d+1))."""
+    rep.header("Operator forms on quartic fields (closed forms of the doc against the L vectors applied to the field)")
+    mu, K = 1.3, 1.7
+    for d in (2, 3):
+        for infl in ("constant", "conical", "gaussian"):
+            delta = 1.37
+            M = INFLUENCE[infl][1]
+            u = Poly(d, d, 4, rng)
+            x0 = rng.uniform(-1, 1, d)
+            basis = monomials(d, 4)
+            coef = u.taylor(x0, basis)
+            div = poly_add(*[poly_deriv(u.terms[a], a) for a in range(d)])
+            lap_u = [poly_lap(u.terms[a], d) for a in range(d)]
+            lap2_u = [poly_lap(t, d) for t in lap_u]
+            lapdiv = poly_lap(div, d)
+            grad_div = [poly_eval(poly_deriv(div, b), x0) for b in range(d)]
+            grad_lapdiv = [poly_eval(poly_deriv(lapdiv, b), x0) for b in range(d)]
+            # bond-based
+            c = micromodulus(d, infl, delta, mu=mu)
+            fL = np.einsum("bai,ai->b", L_bond(d, infl, delta, c, 4), coef)
+            lB2 = delta**2 * M(d + 2) / (4 * (d + 4) * M(d))
+            fF = [mu * (poly_eval(lap_u[b], x0) + 2 * grad_div[b]) + mu * lB2 * (poly_eval(lap2_u[b], x0) + 4 * grad_lapdiv[b])
+                  for b in range(d)]
+            for b in range(d):
+                rep.row(f"BB quartic: mu(Lap u+2 grad div u)+mu lB^2(...) f{'xyz'[b]}", d, infl, fF[b], fL[b],
+                        scale=max(abs(v) for v in fF), show=(b == 0))
+            # LPS
+            cK, cmu = lps_constants(d, K, mu)
+            fE, th = lps_exact(u, d, infl, delta, K, mu, 4, x0)
+            lT2 = delta**2 * M(d + 3) / (2 * (d + 2) * M(d + 1))
+            lG2 = delta**2 * M(d + 3) / (4 * (d + 4) * M(d + 1))
+            rep.row("LPS quartic: theta = (1 + lT^2 Lap) div u", d, infl,
+                    poly_eval(div, x0) + lT2 * poly_eval(lapdiv, x0), float(th(x0)[0, 0]))
+            fF = [mu * (poly_eval(lap_u[b], x0) + 2 * grad_div[b]) + cK / d * (grad_div[b] + 2 * lT2 * grad_lapdiv[b])
+                  + mu * lG2 * (poly_eval(lap2_u[b], x0) + 4 * grad_lapdiv[b]) for b in range(d)]
+            for b in range(d):
+                rep.row(f"LPS quartic: tensor form f{'xyz'[b]}", d, infl, fF[b], fE[b],
+                        scale=max(abs(v) for v in fF), show=(b == 0))
+
+
 def check_stencils(rep, rng):
     rep.header("Collocation weights of a bulk node (delta = m h, Eq. 36 weight, rt = delta): "
                "stencil result against the exact PD value")
@@ -860,10 +933,46 @@ def conditioning_table(rng):
                           f" {errs[0]:9.2e} {errs[1]:9.2e} {smax / abs(smin):+10.1e}")
 
 
+def example2_spectrum():
+    """The semi-discrete operator of the paper's Example 2 (2D diffusion,
+    q = 2, constant omega, 39 x 39 nodes on (-0.5, 0.5)^2, delta = 4 h,
+    Dirichlet layers delta thick), collocation on every free node: the
+    largest real part of its eigenvalues (> 0: growing modes, whatever the
+    time step)."""
+    n, m = 39, 4
+    h = 1.0 / n
+    delta = m * h
+    c = (np.arange(n) + 0.5) * h - 0.5
+    P = np.stack(np.meshgrid(c, c, indexing="ij"), -1).reshape(-1, 2)
+    grid = np.rint(P / h - 0.5 + n / 2).astype(int)
+    index = {tuple(g): i for i, g in enumerate(grid)}
+    free = np.where((np.abs(P) < 0.5 - delta + 1e-12).all(1))[0]
+    pos = {g: i for i, g in enumerate(free)}
+    print(f"\nExample 2 (Table 2), {len(P)} nodes, {len(free)} free: eigenvalues of the collocation operator")
+    for k in (2, 4):
+        for rt in (1.0, 1.5):
+            xi = lattice_family(2, m) * h
+            sel = select_collocation(xi, delta, DEFAULT_NC[2][k])
+            Q, _ = wls(xi[sel], monomials(2, k), delta, rt * delta)
+            w = L_diffusion(2, "constant", delta, micro_diffusivity(2, "constant", delta, 2), 2, k) @ Q
+            offs = np.rint(xi[sel] / h).astype(int)
+            A = np.zeros((len(free), len(free)))
+            for r, i in enumerate(free):
+                for wj, o in zip(w, offs):
+                    j = index[tuple(grid[i] + o)]
+                    if j in pos:
+                        A[r, pos[j]] += wj
+            ev = np.linalg.eigvals(A)
+            print(f"  C{k} n_c={len(sel)} rt={rt} delta: largest real part {ev.real.max():+.3e} /s, "
+                  f"most negative {ev.real.min():.3e} /s (K = 1)")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--verbose", action="store_true", help="print every entry of every vector")
     ap.add_argument("--conditioning", action="store_true", help="also print the table behind the choice of n_c")
+    ap.add_argument("--example2-spectrum", action="store_true",
+                    help="also print the largest real eigenvalue of the collocation operator of Example 2 (10 s)")
     args = ap.parse_args()
     t0 = time.time()
     rng = np.random.default_rng(23)
@@ -873,9 +982,12 @@ def main():
     check_diffusion(rep, delta)
     check_lps(rep, delta)
     check_paper_sources(rep)
+    check_operator_forms(rep, rng)
     check_stencils(rep, rng)
     if args.conditioning:
         conditioning_table(rng)
+    if args.example2_spectrum:
+        example2_spectrum()
     print(f"\n{rep.rows} comparisons, worst relative error {rep.worst:.2e} (tolerance {TOL:g}), "
           f"{time.time() - t0:.1f} s")
     if rep.failed:
