@@ -37,6 +37,10 @@ namespace PeriDEAL
       const unsigned int n        = node_set.size();
       const unsigned int n_owned  = node_set.n_owned();
       const MPI_Comm     comm     = node_set.get_communicator();
+      AssertThrow(collocation_node.empty(),
+                  ExcMessage("BondOperator::assemble(): the collocation rows "
+                             "are not assembled yet; use the matrix-free "
+                             "operator."));
       AssertThrow(constraints == nullptr || rhs != nullptr,
                   ExcMessage("BondOperator::assemble: constraints need a "
                              "right-hand side vector."));
