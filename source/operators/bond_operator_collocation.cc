@@ -133,6 +133,7 @@ namespace PeriDEAL
           if (k < 0)
             continue;
           collocation_row.offset.push_back(layout.stencil_offset[k]);
+          collocation_row.stencil_index.push_back(k);
           for (unsigned int c = 0; c < dim; ++c)
             for (unsigned int d = 0; d < dim; ++d)
               {

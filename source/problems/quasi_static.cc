@@ -105,13 +105,9 @@ namespace PeriDEAL
                                   "5) but not built yet; use a bond-based "
                                   "model or 'Scheme = standard'"));
       const auto &solver = simulator.get_linear_solver();
-      AssertThrow(solver.is_matrix_free(),
-                  ExcInvalidInput("Linear solver/Operator",
-                                  "assembled",
-                                  "the collocation rows are applied "
-                                  "matrix-free only so far; set 'Operator = "
-                                  "matrix-free' (with GMRES or BiCGStab)"));
-      solver.check_form(Solvers::OperatorForm::matrix_free,
+      solver.check_form(solver.is_matrix_free() ?
+                          Solvers::OperatorForm::matrix_free :
+                          Solvers::OperatorForm::assembled,
                         false,
                         "the quadrature scheme '" + scheme + "'");
     }

@@ -236,8 +236,8 @@ group_collocation() {
     "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
   expect_error "$(col '' "$gmres")" \
     "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation form of state-based models"
-  expect_error "$bb; $(col '' '')" \
-    "Invalid value 'assembled' for the parameter 'Linear solver/Operator': the collocation rows are applied matrix-free only so far"
+  expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Method = CG\nend')" \
+    "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend')" \
     "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = none\nend\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend')" \

@@ -273,10 +273,11 @@ namespace PeriDEAL
        * the uniform lattice; L the moments of the linearised bond-based
        * pair stiffness 2 beta(r) n (x) n). The other nodes keep the
        * standard scheme. Only for bond-based models with linear kinematics
-       * and no failure, on a uniform lattice, matrix-free; the operator is
-       * not symmetric. An ill-conditioned bulk cloud falls back to the
-       * standard scheme everywhere or throws, as @p settings say.
-       * Collective (the report's counts are sums over the processes).
+       * and no failure, on a uniform lattice; apply() and assemble() both
+       * evaluate the rows; the operator is not symmetric. An ill-conditioned
+       * bulk cloud falls back to the standard scheme everywhere or throws, as
+       * @p settings say. Collective (the report's counts are sums over the
+       * processes).
        */
       CollocationReport
       use_collocation(const Quadrature::CollocationSettings &settings);
@@ -415,6 +416,7 @@ namespace PeriDEAL
       struct CollocationRow
       {
         std::vector<std::ptrdiff_t>                offset;
+        std::vector<unsigned int>                  stencil_index;
         std::array<std::vector<double>, dim * dim> w;
         Tensor<2, dim>                             sum;
       };
