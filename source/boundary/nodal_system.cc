@@ -11,6 +11,7 @@
 
 #include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace PeriDEAL
 {
@@ -32,6 +33,32 @@ namespace PeriDEAL
                            context.model,
                            context.horizon,
                            &bond_state);
+      collocation = {};
+      if (const auto *settings = context.quadrature_scheme.collocation())
+        {
+          collocation = bond_operator.use_collocation(*settings);
+          std::ostringstream line;
+          line << "quadrature '" << context.quadrature_scheme_name
+               << "': order " << settings->order << ", "
+               << collocation.n_collocation << " collocation nodes ("
+               << collocation.n_monomials << " monomials), cond(A) "
+               << std::setprecision(2) << std::scientific
+               << collocation.condition << std::defaultfloat << "; "
+               << collocation.n_collocation_nodes << " nodes by collocation, "
+               << collocation.n_cut_nodes
+               << " standard (ball cut by the surface), "
+               << collocation.n_ill_conditioned
+               << " standard (ill-conditioned cloud)";
+          context.print_progress(line.str());
+          if (collocation.symbol > 1e-10)
+            context.pcout
+              << "           warning: the bulk collocation row has growing "
+                 "modes (largest symbol eigenvalue "
+              << std::setprecision(2) << collocation.symbol << std::defaultfloat
+              << " of the most negative): the static operator is "
+                 "indefinite, see doc/collocation.md Sect. 7"
+              << std::endl;
+        }
     }
 
 
@@ -63,14 +90,18 @@ namespace PeriDEAL
       bond_operator.compute_dilatation(u, dilatation);
       const auto   &weighted_volumes = bond_operator.weighted_volumes();
       IO::NodeField theta{"dilatation", {}}, m{"weighted_volume", {}},
-        neighbours{"n_neighbors", {}};
+        neighbours{"n_neighbors", {}}, scheme{"scheme", {}};
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
           theta.values.push_back(dilatation[i]);
           m.values.push_back(weighted_volumes[i]);
           neighbours.values.push_back(context.neighbor_lists.n_bonds(i));
+          // 0: standard, 1: collocation.
+          scheme.values.push_back(bond_operator.is_collocation_node(i) ? 1 : 0);
         }
-      return {theta, m, neighbours};
+      if (context.quadrature_scheme.collocation() == nullptr)
+        return {theta, m, neighbours};
+      return {theta, m, neighbours, scheme};
     }
 
 
@@ -130,7 +161,8 @@ namespace PeriDEAL
         context.communicator);
       const unsigned int n_stencil =
         Utilities::MPI::sum(bond_operator.n_stencil_nodes(),
-                            context.communicator);
+                            context.communicator) +
+        collocation.n_collocation_nodes;
       const std::size_t visits =
         Utilities::MPI::sum(bond_operator.n_bond_visits(),
                             context.communicator);
@@ -140,9 +172,14 @@ namespace PeriDEAL
       context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
                     << context.elapsed() << " s] matrix-free operator: "
                     << context.dof_handler.n_dofs() << " DoFs, " << n_stencil
-                    << " nodes on the shared stencil, "
-                    << context.summary.n_nodes - n_stencil << " on lists, "
-                    << context.summary.n_constrained_nodes
+                    << " nodes on the shared stencil"
+                    << (collocation.n_collocation_nodes > 0 ?
+                          " (" +
+                            std::to_string(collocation.n_collocation_nodes) +
+                            " of them by collocation)" :
+                          std::string())
+                    << ", " << context.summary.n_nodes - n_stencil
+                    << " on lists, " << context.summary.n_constrained_nodes
                     << " nodes in Dirichlet layers; " << visits
                     << " bond visits per application, " << std::setprecision(1)
                     << operator_mb << " MB, " << MultithreadInfo::n_threads()

@@ -27,6 +27,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    DiffusionModel<dim>::supports_collocation() const
+    {
+      return false;
+    }
+
+
+    template <int dim>
     void
     DiffusionModel<dim>::initialize(const DiffusionSetup<dim> &, VectorType &)
     {}
@@ -109,6 +117,13 @@ namespace PeriDEAL
         static void
         declare_parameters(ParameterHandler &)
         {}
+
+        /// The kernel alone: no phases.
+        bool
+        supports_collocation() const override
+        {
+          return true;
+        }
       };
     } // namespace
 

@@ -269,6 +269,8 @@ namespace PeriDEAL
           if (state_based)
             dilatation_pass();
           force_pass();
+          if (!collocation_chunks.empty())
+            collocation_pass();
         }
       double *values = force.begin();
       layout.for_each_node(nodes->n_owned(), [&](const unsigned int i) {
@@ -318,6 +320,14 @@ namespace PeriDEAL
             [&](const unsigned int begin, const unsigned int end) {
               for (unsigned int i = begin; i < end; ++i)
                 {
+                  if (is_collocation_node(i))
+                    {
+                      // K_ii = V_i sum_k W_k (use_collocation()).
+                      for (unsigned int c = 0; c < dim; ++c)
+                        diagonal.local_element(layout.vector_index[i] + c) =
+                          collocation_row.sum[c][c];
+                      continue;
+                    }
                   const double   s_i = s_slot[layout.slot[i]];
                   Tensor<1, dim> G, a_sum, diag;
                   auto           add = [&](const unsigned int k) {

@@ -318,7 +318,7 @@ namespace PeriDEAL
         {
           int representative = -1;
           for (unsigned int i = 0; i < n_owned; ++i)
-            if (layout.on_stencil(i))
+            if (layout.on_stencil(i) && !is_collocation_node(i))
               {
                 bool all = true;
                 for (unsigned int k = 0; k < stencil.g.size() && all; ++k)
@@ -336,6 +336,33 @@ namespace PeriDEAL
               row_values(representative, bulk_block);
             }
         }
+
+      // Collocation rows (use_collocation()): one row shifted, like the
+      // bulk rows: dF_i/du_j = V W_k at the node o_k, -V sum_k W_k at i.
+      std::vector<Tensor<2, dim>> collocation_block;
+      std::vector<std::uint32_t>  collocation_keys;
+      if (!collocation_row.offset.empty())
+        {
+          collocation_block.assign(n_keys, Tensor<2, dim>());
+          collocation_keys.push_back(centre);
+          for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
+            {
+              const std::ptrdiff_t key =
+                centre + box_delta[collocation_row.stencil_index[k]];
+              collocation_keys.push_back(key);
+              for (unsigned int p = 0; p < dim; ++p)
+                for (unsigned int q = 0; q < dim; ++q)
+                  {
+                    const double w = collocation_row.w[p * dim + q][k];
+                    collocation_block[key][p][q] += w;
+                    collocation_block[centre][p][q] -= w;
+                  }
+            }
+          std::sort(collocation_keys.begin(), collocation_keys.end());
+        }
+      const auto shared_row = [&](const unsigned int i) {
+        return layout.use_lattice && (bulk_row[i] || is_collocation_node(i));
+      };
 
       // Columns: every node within two bonds of an owned node, dim columns
       // each; the owned nodes first in the order of the rows (solvers such
@@ -401,7 +428,9 @@ namespace PeriDEAL
       std::vector<std::vector<std::uint32_t>> stored_keys(n_owned);
       const auto                              keys_of =
         [&](const unsigned int i) -> const std::vector<std::uint32_t> & {
-        return layout.use_lattice && bulk_row[i] ? bulk_keys : stored_keys[i];
+        return is_collocation_node(i)            ? collocation_keys :
+               layout.use_lattice && bulk_row[i] ? bulk_keys :
+                                                   stored_keys[i];
       };
       std::vector<int> row_length(owned.n_elements(), 0);
       {
@@ -418,7 +447,7 @@ namespace PeriDEAL
                 int count = 0;
                 if (!fully_prescribed[i])
                   {
-                    if (!(layout.use_lattice && bulk_row[i]))
+                    if (!shared_row(i))
                       row_structure(i, mark, stored_keys[i]);
                     for (const auto key : keys_of(i))
                       {
@@ -532,11 +561,13 @@ namespace PeriDEAL
             scratch.assign(n_keys, Tensor<2, dim>());
           for (unsigned int i = begin; i < end; ++i)
             {
-              const bool  use_bulk = layout.use_lattice && bulk_row[i];
+              const bool  use_bulk = shared_row(i);
               const auto &keys     = keys_of(i);
               if (!use_bulk && !fully_prescribed[i])
                 row_values(i, scratch);
-              const auto &block = use_bulk ? bulk_block : scratch;
+              const auto &block = is_collocation_node(i) ? collocation_block :
+                                  use_bulk               ? bulk_block :
+                                                           scratch;
               for (unsigned int r = 0; r < dim; ++r)
                 {
                   const int row = row_of_node[i] + r;

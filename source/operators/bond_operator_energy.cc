@@ -51,6 +51,15 @@ namespace PeriDEAL
             {
               const std::size_t si    = layout.slot[i];
               double            bonds = 0;
+              if (is_collocation_node(i))
+                {
+                  // The collocation row is linear: its node's share of
+                  // 1/2 u.K u is -1/2 u_i . F_i.
+                  const Tensor<1, dim> f = collocation_force(si);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    sum -= 0.5 * u_slot[d][si] * f[d];
+                  continue;
+                }
               if (layout.use_lattice)
                 {
                   const auto visit = [&](const unsigned int k) {

@@ -28,6 +28,12 @@ namespace PeriDEAL
                                       comm) == 1,
                   ExcMessage("BondOperator::set_kinematics: one critical "
                              "stretch per node of the set."));
+      // (collocation_node is the same on every process.)
+      AssertThrow(collocation_node.empty() ||
+                    (!finite_deformation && stretch.empty()),
+                  ExcMessage("BondOperator: the collocation rows are "
+                             "linearised and unbreakable; finite kinematics "
+                             "and bond failure need the standard scheme."));
       finite           = finite_deformation;
       critical_stretch = stretch;
       with_failure     = false;

@@ -146,6 +146,11 @@ namespace PeriDEAL
                                  "the horizon plus two cell diameters."));
         }
 
+      // Every node standard until use_collocation() says otherwise.
+      collocation_node.clear();
+      collocation_row = CollocationRow();
+      collocation_chunks.clear();
+
       layout.index_list_bonds();
       build_work_lists();
     }
@@ -173,7 +178,8 @@ namespace PeriDEAL
         theta_work().chunks);
       layout.make_chunks(
         [&](const unsigned int i) {
-          return i < nodes->n_owned() && layout.on_stencil(i);
+          return i < nodes->n_owned() && !is_collocation_node(i) &&
+                 layout.on_stencil(i);
         },
         force_work().chunks);
     }
@@ -188,8 +194,9 @@ namespace PeriDEAL
       const auto         needs_theta = [&](const unsigned int i) {
         return needs_dilatation(i);
       };
+      // (Nodes evaluated by collocation have a pass of their own.)
       const auto needs_force = [&](const unsigned int i) {
-        return i < n_owned;
+        return i < n_owned && !is_collocation_node(i);
       };
 
       make_stencil_chunks();
@@ -363,7 +370,11 @@ namespace PeriDEAL
     std::size_t
     BondOperator<dim>::n_bond_visits() const
     {
-      return layout.bond_visits;
+      // (A collocation node visits the entries of its row.)
+      std::size_t visits = layout.bond_visits;
+      for (const Chunk &chunk : collocation_chunks)
+        visits += chunk.length * collocation_row.offset.size();
+      return visits;
     }
 
 

@@ -1,7 +1,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parallel.h>
 
+#include <deal.II/lac/full_matrix.h>
+
+#include <perideal/base/exceptions.h>
 #include <perideal/operators/diffusion_operator.h>
+#include <perideal/quadrature/collocation.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,6 +46,12 @@ namespace PeriDEAL
               stencil_sum += mu;
             }
         }
+      collocation  = false;
+      symbol       = 0;
+      bulk_offset  = layout.stencil_offset;
+      bulk_mu      = stencil_mu;
+      bulk_sum     = stencil_sum;
+      bulk_abs_sum = stencil_sum;
       // Bond slots and conductances of the owned nodes that do not have the
       // stencil's neighbourhood (those that do are read off the stencil).
       stored_first.assign(nodes->n_owned() + 1, 0);
@@ -92,6 +102,10 @@ namespace PeriDEAL
       const double                      gate_,
       const std::vector<double>        &rate_)
     {
+      AssertThrow(!collocation,
+                  ExcMessage("DiffusionOperator: phases (corrosion) are not "
+                             "available with the collocation quadrature yet; "
+                             "use 'Quadrature/Scheme = standard'."));
       AssertThrow(phase_of_node.size() == nodes->size() &&
                     factor_.size() == n_phases_ * n_phases_,
                   ExcMessage("set_phases(): one phase per node of the set "
@@ -136,7 +150,7 @@ namespace PeriDEAL
           if (layout.use_lattice && lists->has_full_stencil(i) && intact)
             {
               largest_geometric_sum =
-                std::max(largest_geometric_sum, stencil_sum);
+                std::max(largest_geometric_sum, bulk_abs_sum);
               bool uniform = true;
               if (with_phases)
                 for (std::size_t k = 0;
@@ -151,7 +165,7 @@ namespace PeriDEAL
                   else
                     {
                       bulk_slots.emplace_back(layout.slot[i], p);
-                      layout.bond_visits += stencil_mu.size();
+                      layout.bond_visits += bulk_mu.size();
                     }
                   continue;
                 }
@@ -247,10 +261,11 @@ namespace PeriDEAL
     {
       copy_in(concentration);
       const double     *c         = c_slot.data();
-      const std::size_t n_offsets = stencil_mu.size();
+      const std::size_t n_offsets = bulk_mu.size();
 
       // The uniform bulk: sum_k mu_k (c_{s+o_k} - c_s), vectorised over a
-      // run of consecutive slots, offsets outside.
+      // run of consecutive slots, offsets outside (the shared stencil's
+      // conductances, or the collocation row's weights).
       const auto &chunks = work().chunks;
       layout.for_chunk_ranges(chunks.size(),
                               [&](const std::size_t begin,
@@ -265,9 +280,8 @@ namespace PeriDEAL
                                       sum[l] = 0;
                                     for (std::size_t k = 0; k < n_offsets; ++k)
                                       {
-                                        const double  mu = stencil_mu[k];
-                                        const double *cj =
-                                          ci + layout.stencil_offset[k];
+                                        const double  mu = bulk_mu[k];
+                                        const double *cj = ci + bulk_offset[k];
 #pragma omp simd
                                         for (unsigned int l = 0; l < len; ++l)
                                           sum[l] += mu * (cj[l] - ci[l]);
@@ -328,7 +342,7 @@ namespace PeriDEAL
         {
           const unsigned char p = phase_slot[layout.slot[i]];
           sums.local_element(layout.vector_index[i]) =
-            stencil_sum * factor[p * n_phases + p];
+            bulk_sum * factor[p * n_phases + p];
         }
       for (std::size_t q = 0; q < work().list_nodes.size(); ++q)
         sums.local_element(layout.vector_index[work().list_nodes[q]]) =
@@ -437,6 +451,115 @@ namespace PeriDEAL
              zero_slots.capacity() * sizeof(std::size_t) +
              phase_slot.capacity() +
              (c_slot.memory_consumption() + r_slot.memory_consumption());
+    }
+
+
+    template <int dim>
+    double
+    DiffusionOperator<dim>::use_collocation(
+      const Quadrature::CollocationSettings &settings)
+    {
+      AssertThrow(layout.use_lattice && !with_phases,
+                  ExcMessage("DiffusionOperator: the collocation quadrature "
+                             "needs a uniform grid and no phases."));
+      // The family of a bulk node: itself and the stencil offsets within
+      // the horizon, with their stencil index.
+      const double                h       = lists->lattice().spacing();
+      const double                horizon = kernel->get_horizon();
+      std::vector<Tensor<1, dim>> family(1);
+      std::vector<int>            stencil_index(1, -1);
+      for (unsigned int k = 0; k < lists->stencil().size(); ++k)
+        {
+          Tensor<1, dim> xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            xi[d] = lists->stencil()[k].offset[d] * h;
+          if (xi.norm() <= horizon * (1 + 1e-12))
+            {
+              family.push_back(xi);
+              stencil_index.push_back(k);
+            }
+        }
+      const Quadrature::CollocationFit<dim> fit(settings.order,
+                                                settings.n_collocation,
+                                                horizon);
+      const std::vector<unsigned int>       selected = fit.select(family);
+      std::vector<Tensor<1, dim>>           cloud;
+      for (const unsigned int j : selected)
+        cloud.push_back(family[j]);
+      AssertThrow(
+        cloud.size() >= fit.basis().size(),
+        ExcInvalidInput("Quadrature/collocation/Collocation nodes",
+                        std::to_string(settings.n_collocation),
+                        "the auxiliary grid for it gives " +
+                          std::to_string(cloud.size()) +
+                          " collocation nodes at this m-ratio, and a fit of "
+                          "order " +
+                          std::to_string(settings.order) + " needs at least " +
+                          std::to_string(fit.basis().size()) +
+                          "; ask for more nodes (0: the default), a lower "
+                          "'Order' or a larger m-ratio"));
+      FullMatrix<double> q;
+      const double       condition = fit.fit(cloud, q);
+      const bool         well_conditioned =
+        condition <= Quadrature::CollocationSettings::condition_limit;
+      AssertThrow(
+        well_conditioned || settings.fall_back,
+        ExcInvalidInput("Quadrature/collocation/Ill-conditioned clouds",
+                        "error",
+                        "the collocation cloud of the bulk nodes (" +
+                          std::to_string(cloud.size()) + " nodes, order " +
+                          std::to_string(settings.order) +
+                          ") has cond(A) = " + format_number(condition) +
+                          " > 1e12; choose another 'Collocation nodes' or "
+                          "'Order', or 'fall back' to the standard scheme"));
+      if (!well_conditioned)
+        return condition;
+      const auto moments = Quadrature::scalar_moments<dim>(
+        fit.basis(),
+        [&](const double r) { return kernel->conductance(r); },
+        horizon);
+      const std::vector<double> row = Quadrature::scalar_row(moments, q);
+      {
+        std::vector<Tensor<2, dim>> blocks;
+        for (const double w : row)
+          {
+            Tensor<2, dim> block;
+            for (unsigned int d = 0; d < dim; ++d)
+              block[d][d] = w;
+            blocks.push_back(block);
+          }
+        symbol = Quadrature::largest_symbol_eigenvalue<dim>(cloud,
+                                                            blocks,
+                                                            h,
+                                                            dim == 3 ? 12 : 40);
+      }
+      collocation = true;
+      bulk_offset.clear();
+      bulk_mu.clear();
+      bulk_sum     = 0;
+      bulk_abs_sum = 0;
+      // Without the node itself (sum_k w_k = 0 to round-off): in the order
+      // of the cloud, fixed by the bond vectors.
+      for (unsigned int j = 0; j < cloud.size(); ++j)
+        {
+          const int k = stencil_index[selected[j]];
+          if (k < 0)
+            continue;
+          bulk_offset.push_back(layout.stencil_offset[k]);
+          bulk_mu.push_back(row[j]);
+          bulk_sum += row[j];
+          bulk_abs_sum += std::abs(row[j]);
+        }
+      AssertThrow(bulk_sum > 0,
+                  ExcInvalidInput(
+                    "Quadrature/collocation/Order",
+                    std::to_string(settings.order),
+                    "the bulk collocation row of this order at this m-ratio "
+                    "weighs its own node against its neighbours (a "
+                    "non-positive diagonal; doc/collocation.md Sect. 7): "
+                    "the operator has growing modes. Use 'Order = 2'"));
+      build_work_lists();
+      return condition;
     }
 
 

@@ -68,6 +68,48 @@ namespace PeriDEAL
       simulator.get_boundary_treatment()
         .template make_system<dim>(simulator.get_boundary_treatment_name())
         ->check_input(simulator.get_linear_solver());
+      if (simulator.get_quadrature_scheme().collocation() != nullptr)
+        check_collocation_input(simulator);
+    }
+
+
+    template <int dim>
+    bool
+    QuasiStatic<dim>::supports_collocation() const
+    {
+      return true;
+    }
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::check_collocation_input(
+      const Simulator<dim> &simulator) const
+    {
+      const std::string &scheme = simulator.get_quadrature_scheme_name();
+      AssertThrow(simulator.get_boundary_treatment().body_nodes_only(),
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  scheme,
+                                  "the collocation rows are built for the "
+                                  "body's own nodes, and the boundary "
+                                  "treatment '" +
+                                    simulator.get_boundary_treatment_name() +
+                                    "' adds others; use 'Boundary "
+                                    "treatment/Treatment = none' or 'Scheme "
+                                    "= standard'"));
+      AssertThrow(!simulator.get_model().is_state_based(),
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  scheme,
+                                  "the collocation form of state-based models "
+                                  "(LPS) is derived (doc/collocation.md Sect. "
+                                  "5) but not built yet; use a bond-based "
+                                  "model or 'Scheme = standard'"));
+      const auto &solver = simulator.get_linear_solver();
+      solver.check_form(solver.is_matrix_free() ?
+                          Solvers::OperatorForm::matrix_free :
+                          Solvers::OperatorForm::assembled,
+                        false,
+                        "the quadrature scheme '" + scheme + "'");
     }
 
 

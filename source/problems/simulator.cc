@@ -309,6 +309,22 @@ namespace PeriDEAL
 
 
     template <int dim>
+    const Quadrature::QuadratureScheme<dim> &
+    Simulator<dim>::get_quadrature_scheme() const
+    {
+      return *quadrature_scheme;
+    }
+
+
+    template <int dim>
+    const std::string &
+    Simulator<dim>::get_quadrature_scheme_name() const
+    {
+      return quadrature_scheme_name;
+    }
+
+
+    template <int dim>
     double
     Simulator<dim>::get_horizon() const
     {
@@ -413,6 +429,8 @@ namespace PeriDEAL
               get_model(),
               *algorithm,
               algorithm_name,
+              *quadrature_scheme,
+              quadrature_scheme_name,
               horizon,
               boundary_conditions,
               treatment_name,

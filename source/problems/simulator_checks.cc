@@ -34,6 +34,9 @@ namespace PeriDEAL
         {"Partial volumes",
          "Algorithm",
          Quadrature::PartialVolumeRegistry<dim>::names()},
+        {"Quadrature",
+         "Scheme",
+         Quadrature::QuadratureSchemeRegistry<dim>::names()},
         {"Boundary treatment",
          "Treatment",
          Boundary::BoundaryTreatmentRegistry::names()},
@@ -131,10 +134,9 @@ namespace PeriDEAL
       // elasticity preconditioner; an assembled matrix stores dim rows of
       // dim times the nodes within the coupling range, 12 bytes an entry,
       // and a direct solver's factors several times that.
-      const double m =
-        horizon_specification == HorizonSpecification::m_ratio ?
-          m_ratio :
-          horizon_length / std::max(1e-300, coarse.spacing);
+      const double m = horizon_specification == HorizonSpecification::m_ratio ?
+                         m_ratio :
+                         horizon_length / std::max(1e-300, coarse.spacing);
       // Calibrated on the 28^3 LPS case (110 KB per node assembled, m = 3).
       const double reach   = couples_two_horizons() ? 2 * m : m;
       const double coupled = dim == 3 ? 4. / 3. * M_PI * reach * reach * reach :
@@ -256,14 +258,14 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)                                             \
-  template void Simulator<dim>::check_input_file(const std::string &,         \
-                                                 ParameterHandler &);         \
+#define PERIDEAL_INSTANTIATE(dim)                                              \
+  template void Simulator<dim>::check_input_file(const std::string &,          \
+                                                 ParameterHandler &);          \
   template void Simulator<dim>::check_unused_entries(const ParameterHandler &) \
-    const;                                                                    \
-  template void Simulator<dim>::check_memory_estimate(                        \
-    const MeshGenerator<dim>::CoarseSize &) const;                            \
-  template void Simulator<dim>::check_material_scale() const;                 \
+    const;                                                                     \
+  template void Simulator<dim>::check_memory_estimate(                         \
+    const MeshGenerator<dim>::CoarseSize &) const;                             \
+  template void Simulator<dim>::check_material_scale() const;                  \
   template void Simulator<dim>::check_output_names() const;
     PERIDEAL_INSTANTIATE(1)
     PERIDEAL_INSTANTIATE(2)

@@ -142,6 +142,25 @@ namespace PeriDEAL
       }
       prm.leave_subsection();
 
+      prm.enter_subsection("Quadrature");
+      {
+        prm.declare_entry(
+          "Scheme",
+          "standard",
+          Patterns::Selection(
+            Quadrature::QuadratureSchemeRegistry<dim>::pattern_string()),
+          "The quadrature of the nonlocal operator at each node: 'standard' "
+          "(the partial-volume weights of 'Partial volumes/Algorithm' at "
+          "every node) or 'collocation' (the WLS collocation of the "
+          "hybrid-collocation paper, with the entries of the subsection "
+          "'collocation', at every node whose neighbourhood is a full ball "
+          "inside the body and its layers; the others standard). "
+          "Collocation gives a non-symmetric operator: use GMRES or "
+          "BiCGStab.");
+        Quadrature::QuadratureSchemeRegistry<dim>::declare_parameters(prm);
+      }
+      prm.leave_subsection();
+
       prm.enter_subsection("Material model");
       {
         // 1D has no material model (its runs are diffusion runs).
@@ -232,8 +251,8 @@ namespace PeriDEAL
         horizon_specification = prm.get("Specification") == "m-ratio" ?
                                   HorizonSpecification::m_ratio :
                                   HorizonSpecification::length;
-        m_ratio        = prm.get_double("m-ratio");
-        horizon_length = prm.get_double("Length");
+        m_ratio               = prm.get_double("m-ratio");
+        horizon_length        = prm.get_double("Length");
         if (horizon_specification == HorizonSpecification::m_ratio)
           {
             AssertThrow(m_ratio > 0 && std::isfinite(m_ratio),
@@ -254,6 +273,13 @@ namespace PeriDEAL
       algorithm_name = prm.get("Algorithm");
       algorithm =
         Quadrature::PartialVolumeRegistry<dim>::create(algorithm_name, prm);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Quadrature");
+      quadrature_scheme_name = prm.get("Scheme");
+      quadrature_scheme = Quadrature::QuadratureSchemeRegistry<dim>::create(
+        quadrature_scheme_name,
+        prm);
       prm.leave_subsection();
 
       prm.enter_subsection("Material model");
@@ -323,6 +349,14 @@ namespace PeriDEAL
         linear_solver.is_matrix_free() ? "matrix-free" : "assembled";
       summary.preconditioner = linear_solver.preconditioner_name();
 
+      AssertThrow(quadrature_scheme->collocation() == nullptr ||
+                    problem->supports_collocation(),
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  quadrature_scheme_name,
+                                  "the problem type '" + problem_name +
+                                    "' does not support the collocation "
+                                    "quadrature yet (only 'quasi-static' "
+                                    "does); use 'Scheme = standard'"));
       problem->check_input(*this);
       check_unused_entries(prm);
     }

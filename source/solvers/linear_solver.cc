@@ -375,10 +375,12 @@ namespace PeriDEAL
       AssertThrow(symmetric || method_value != Method::cg,
                   ExcInvalidInput("Linear solver/Method",
                                   method_name(),
-                                  owner +
-                                    " gives a non-symmetric system: with "
-                                    "'Operator = matrix-free' use GMRES or "
-                                    "BiCGStab"));
+                                  owner + " gives a non-symmetric system: " +
+                                    (form == OperatorForm::assembled ?
+                                       "use GMRES, BiCGStab or the direct "
+                                       "solver" :
+                                       "with 'Operator = matrix-free' use "
+                                       "GMRES or BiCGStab")));
       AssertThrow(preconditioner_object->supports(form),
                   ExcInvalidInput("Linear solver/Preconditioner",
                                   preconditioner_selected,

@@ -148,6 +148,26 @@ group_basic() {
 }
 
 # Corrosion; mirror flux layers; 1D.
+# The collocation quadrature ('Quadrature/Scheme = collocation'): it runs
+# with plain diffusion and the continuum micro-diffusivity, and refuses the
+# rest by entry.
+group_collocation() {
+  col='s/set Problem type = diffusion/set Problem type = diffusion\nsubsection Quadrature\n  set Scheme = collocation\nend/'
+  sed "$col" base.prm > collocation.prm
+  expect_valid 1 collocation.prm "plain diffusion with collocation" out/solution.pvd out/history.csv
+  rm -rf out
+  expect_error "$col; s/  set Diffusivity = 1/  set Diffusivity = 1\n  set Micro-diffusivity calibration = lattice/" \
+    "Invalid value 'lattice' for the parameter 'diffusion/Micro-diffusivity calibration': the collocation quadrature integrates the kernel over the ball exactly"
+  # The order-4 row has growing modes at m = 3 (doc/collocation.md Sect. 7):
+  # refused for explicit stepping before the run starts.
+  expect_error "$col; s/  set Diffusivity = 1/  set Diffusivity = 1\n  set Time step = 1e-5/; s/  set Scheme = collocation/  set Scheme = collocation\n  subsection collocation\n    set Order = 4\n  end/" \
+    "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has growing modes"
+  base_prm=corrosion.prm
+  expect_error "$col" \
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the diffusion model 'corrosion' does not run with the collocation quadrature yet"
+  base_prm=base.prm
+}
+
 group_corrosion() {
   expect_valid 1 corrosion.prm "the valid corrosion input"
   rm -rf out

@@ -210,6 +210,44 @@ group_solvers() {
   done
 }
 
+# The collocation quadrature ('Quadrature'): orders and node counts the
+# dimension does not offer, and models, solvers, treatments and problem types
+# it does not support (yet).
+group_collocation() {
+  bb="s/set Model = linear peridynamic solid/set Model = bond-based/; s/subsection linear peridynamic solid/subsection bond-based/"
+  gmres='\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = Jacobi\nend'
+  col() { printf 's/set Dimension = 2/set Dimension = 2\\nsubsection Quadrature\\n  set Scheme = collocation\\n%s\\nend%s/' "$1" "$2"; }
+  sed "$bb; $(col '' "$gmres")" base.prm > collocation.prm
+  expect_valid 1 collocation.prm "collocation, bond-based, GMRES" out/solution_0.pvtu
+  rm -rf out
+  expect_error "$bb; $(col '  subsection collocation\n    set Order = 6\n  end' "$gmres")" \
+    "Invalid value '6' for the parameter 'Quadrature/collocation/Order': the collocation scheme offers the orders 2 and 4 in 2D"
+  expect_error "$bb; $(col '  subsection collocation\n    set Order = 3\n  end' "$gmres")" \
+    "Invalid value '3' for the parameter 'Quadrature/collocation/Order'"
+  expect_error "$bb; $(col '  subsection collocation\n    set Collocation nodes = 4\n  end' "$gmres")" \
+    "Invalid value '4' for the parameter 'Quadrature/collocation/Collocation nodes': a fit of order 2 in 2D has 6 monomials and needs at least that many collocation nodes; give at least 6"
+  # 15 nodes pass the count of monomials of order 4 (15), but the closest
+  # auxiliary grid has 13 points.
+  expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n    set Collocation nodes = 15\n  end' "$gmres")" \
+    "Invalid value '15' for the parameter 'Quadrature/collocation/Collocation nodes': the auxiliary grid for it gives 13 collocation nodes" 2
+  # The order-4 row at m = 3 weighs its own node against its neighbours
+  # (doc/collocation.md Sect. 7): an indefinite static operator.
+  expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n  end' "$gmres")" \
+    "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
+  expect_error "$(col '' "$gmres")" \
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation form of state-based models"
+  expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Method = CG\nend')" \
+    "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
+  expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend')" \
+    "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
+  expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = none\nend\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend')" \
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation rows are built for the body's own nodes"
+  expect_error "$bb; $(col '' '\nset Problem type = explicit dynamics')" \
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support the collocation quadrature yet"
+  expect_error "$bb; s/set Dimension = 2/set Dimension = 2\nsubsection Quadrature\n  subsection collocation\n    set Order = 4\n  end\nend/" \
+    "The entry 'Quadrature/collocation/Order' (line 4) belongs to 'collocation', but 'Quadrature/Scheme' selects 'standard'"
+}
+
 # Overflowing moduli, output names that meet, entries that do nothing.
 group_no_effect() {
   # A modulus whose bond stiffness overflows with the horizon is named as the

@@ -34,7 +34,7 @@ sed -n -e 's/^\[ *[0-9.]* s\] //' \
        -e 's/ ([0-9]* ghost copies)//' \
        -e 's/, weights by .*//' \
        -e 's/; [0-9]* bond visits per application, [0-9.]* MB, [0-9]* thread(s) per process//' \
-       -e '/^nodes:/p' -e '/^assembled:/p' -e '/^matrix-free operator:/p' \
+       -e '/^nodes:/p' -e '/^quadrature /p' -e '/^assembled:/p' -e '/^matrix-free operator:/p' \
        -e 's/^ *error against/error against/p' log > figures
 grep -q "equilibrium check" log || { cat log; echo "FAIL: no equilibrium check"; exit 1; }
 equilibrium=$(sed -n 's/.*|F_int + F_ext| \/ |F_int| = //p' log)

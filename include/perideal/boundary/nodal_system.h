@@ -76,8 +76,10 @@ namespace PeriDEAL
         const SystemContext<dim>            &context,
         const TrilinosWrappers::MPI::Vector &displacement) const;
 
-      Discretization::BondState<dim>      bond_state;
-      Operators::BondOperator<dim>        bond_operator;
+      Discretization::BondState<dim> bond_state;
+      Operators::BondOperator<dim>   bond_operator;
+      /// What the collocation scheme did (all zero with the standard one).
+      typename Operators::BondOperator<dim>::CollocationReport collocation;
       Operators::ConstrainedOperator<dim> constrained_operator;
       TrilinosWrappers::SparseMatrix      local_matrix;
       AffineConstraints<double>           constraints;

@@ -22,6 +22,7 @@
 #include <perideal/io/run_summary.h>
 #include <perideal/models/model.h>
 #include <perideal/quadrature/partial_volume.h>
+#include <perideal/quadrature/quadrature_scheme.h>
 #include <perideal/solvers/linear_solver.h>
 
 #include <functional>
@@ -84,6 +85,11 @@ namespace PeriDEAL
 
       /// Its name in the input file.
       const std::string &partial_volume_name;
+
+      /// The quadrature scheme ('Quadrature/Scheme') and its name.
+      const Quadrature::QuadratureScheme<dim> &quadrature_scheme;
+
+      const std::string &quadrature_scheme_name;
 
       /// The horizon \f$\delta\f$.
       const double horizon;

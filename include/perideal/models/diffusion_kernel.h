@@ -104,6 +104,13 @@ namespace PeriDEAL
         return q;
       }
 
+      /// The horizon \f$\delta\f$ (after reinit()).
+      double
+      get_horizon() const
+      {
+        return horizon;
+      }
+
       /// The micro-diffusivity \f$\kappa\f$ (after reinit()).
       double
       micro_diffusivity() const

@@ -97,6 +97,14 @@ namespace PeriDEAL
       supports_implicit() const;
 
       /**
+       * Whether the model runs with the collocation quadrature
+       * ('Quadrature/Scheme = collocation'): a model that sets phases on
+       * the operator (corrosion) does not yet. Default: false.
+       */
+      virtual bool
+      supports_collocation() const;
+
+      /**
        * Set up the model once the operator and the initial concentration
        * (owned values of @p c) exist; may overwrite @p c and configure the
        * operator. Collective.

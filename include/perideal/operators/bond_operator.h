@@ -12,6 +12,7 @@
 #include <perideal/models/model.h>
 #include <perideal/operators/bond/bond_kernel.h>
 #include <perideal/operators/loop_layout.h>
+#include <perideal/quadrature/quadrature_scheme.h>
 
 #include <array>
 #include <cstdint>
@@ -230,6 +231,64 @@ namespace PeriDEAL
                TrilinosWrappers::MPI::Vector   *rhs         = nullptr) const;
 
       /// Reference weighted volume \f$m_i\f$ of every node with a list.
+      /**
+       * What use_collocation() did: how many owned nodes (of all
+       * processes) it evaluates by collocation and how many stay standard
+       * because their ball is cut by the surface or their cloud is
+       * ill-conditioned, and the shared bulk row's size, conditioning and
+       * stability.
+       */
+      struct CollocationReport
+      {
+        /// Owned nodes of all processes evaluated by collocation.
+        std::size_t n_collocation_nodes = 0;
+        /// Owned nodes that keep the standard scheme because their
+        /// neighbourhood is not a full ball inside the body and its layers.
+        std::size_t n_cut_nodes = 0;
+        /// Owned nodes that fell back to the standard scheme because the
+        /// cloud's cond(A) exceeds CollocationSettings::condition_limit.
+        std::size_t n_ill_conditioned = 0;
+        /// The shared bulk row: collocation nodes n_c (the node itself
+        /// included), monomials n_p, cond_2(A).
+        unsigned int n_collocation = 0, n_monomials = 0;
+        double       condition = 0;
+        /// The largest eigenvalue of the bulk row's Fourier symbol over
+        /// the magnitude of the most negative one
+        /// (Quadrature::largest_symbol_eigenvalue()): > 0 means growing
+        /// modes (an indefinite static operator).
+        double symbol = 0;
+      };
+
+      /**
+       * Evaluate every owned node whose neighbourhood is the full lattice
+       * stencil (a full ball inside the body and its layers) with the WLS
+       * collocation quadrature of @p settings instead of the partial-volume
+       * weights (doc/collocation.md Sects. 6 and 11): the force of such a
+       * node is
+       * \f[
+       *   F_i = V_i \sum_{k} W_k\,(u_{i + o_k} - u_i),\qquad
+       *   W_k = \sum_\alpha L[\alpha]\, Q[\alpha, k],
+       * \f]
+       * over the collocation nodes o_k of one shared bulk row (one fit on
+       * the uniform lattice; L the moments of the linearised bond-based
+       * pair stiffness 2 beta(r) n (x) n). The other nodes keep the
+       * standard scheme. Only for bond-based models with linear kinematics
+       * and no failure, on a uniform lattice; apply() and assemble() both
+       * evaluate the rows; the operator is not symmetric. An ill-conditioned
+       * bulk cloud falls back to the standard scheme everywhere or throws, as
+       * @p settings say. Collective (the report's counts are sums over the
+       * processes).
+       */
+      CollocationReport
+      use_collocation(const Quadrature::CollocationSettings &settings);
+
+      /// Whether node @p i is evaluated by collocation (use_collocation()).
+      bool
+      is_collocation_node(const unsigned int i) const
+      {
+        return !collocation_node.empty() && collocation_node[i] != 0;
+      }
+
       const std::vector<double> &
       weighted_volumes() const;
 
@@ -350,6 +409,23 @@ namespace PeriDEAL
       // segments. On a lattice the bonds of a node off the shared stencil
       // are a subset of the stencil (the layout's list_stencil_index), the
       // constants shared.
+      /// The shared collocation row: slot offsets of the collocation nodes
+      /// other than the node itself, the d x d blocks V W_k (component
+      /// pair (c, d) in w[c * dim + d]) and their sum, in the order of the
+      /// fit's cloud (fixed by the bond vectors).
+      struct CollocationRow
+      {
+        std::vector<std::ptrdiff_t>                offset;
+        std::vector<unsigned int>                  stencil_index;
+        std::array<std::vector<double>, dim * dim> w;
+        Tensor<2, dim>                             sum;
+      };
+
+      /// 1 for the nodes evaluated by collocation; empty without.
+      std::vector<char>  collocation_node;
+      CollocationRow     collocation_row;
+      std::vector<Chunk> collocation_chunks;
+
       std::vector<ListBond> list_bonds;
       std::vector<double>   list_theta_scale; // m_0 / m_i per node
       // s_i m_0 / m_i per slot, for the runs of the dilatation pass.
@@ -500,6 +576,15 @@ namespace PeriDEAL
 
       void
       force_pass() const;
+
+      /// The forces of the collocation nodes into f_slot
+      /// (bond_operator_collocation.cc).
+      void
+      collocation_pass() const;
+
+      /// The force of collocation node @p i (slot @p si) from u_slot.
+      Tensor<1, dim>
+      collocation_force(const std::size_t si) const;
 
       /// The passes with finite kinematics and/or failure
       /// (bond_operator_fracture.cc).

@@ -11,6 +11,7 @@
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/diffusion_kernel.h>
 #include <perideal/operators/loop_layout.h>
+#include <perideal/quadrature/quadrature_scheme.h>
 
 #include <memory>
 #include <vector>
@@ -65,6 +66,49 @@ namespace PeriDEAL
       /// Re-sort nodes between stencil and lists after bonds broke.
       void
       update_bond_state();
+
+      /**
+       * Evaluate every owned node with a full, intact stencil with the WLS
+       * collocation quadrature of @p settings instead of the partial
+       * volumes (doc/collocation.md Sects. 4 and 6): one shared bulk row
+       * \f$(LC)_i = \sum_k w_k (C_{i+o_k} - C_i)\f$, \f$w_k = \sum_\alpha
+       * L[\alpha] Q[\alpha, k]\f$ with the moments L of the kernel's
+       * conductance over the full ball, evaluated by the same vectorised
+       * bulk loop as the standard stencil; the other nodes keep the
+       * standard scheme. The operator is then not symmetric
+       * (is_symmetric()). Only on a uniform grid, without phases. Returns
+       * the row's cond(A) (above CollocationSettings::condition_limit
+       * the bulk keeps the standard scheme or the call throws, as
+       * @p settings say; the returned value says which). Collective only in
+       * that every process computes the same row.
+       */
+      double
+      use_collocation(const Quadrature::CollocationSettings &settings);
+
+      /// Whether the bulk uses the collocation row (use_collocation()).
+      bool
+      uses_collocation() const
+      {
+        return collocation;
+      }
+
+      /// The largest eigenvalue of the bulk collocation row's Fourier
+      /// symbol over the magnitude of the most negative one
+      /// (Quadrature::largest_symbol_eigenvalue()): > 0 means growing
+      /// modes. 0 without collocation.
+      double
+      collocation_symbol() const
+      {
+        return symbol;
+      }
+
+      /// The number of collocation nodes of the bulk row, the node itself
+      /// included (0 without collocation).
+      unsigned int
+      n_collocation_nodes() const
+      {
+        return collocation ? bulk_offset.size() + 1 : 0;
+      }
 
       /**
        * Phases (optional; without them every bond conducts with factor 1).
@@ -146,7 +190,7 @@ namespace PeriDEAL
       bool
       is_symmetric() const
       {
-        return layout.use_lattice;
+        return layout.use_lattice && !collocation;
       }
 
       /// Owned nodes evaluated with the shared stencil.
@@ -210,6 +254,15 @@ namespace PeriDEAL
       // layout's).
       std::vector<double> stencil_mu;
       double              stencil_sum = 0;
+
+      // The bulk row of the vectorised loop: the shared stencil's offsets
+      // and conductances, or the collocation row's (use_collocation()),
+      // its sum and the sum of magnitudes (for Gershgorin's bound).
+      bool                        collocation = false;
+      double                      symbol      = 0;
+      std::vector<std::ptrdiff_t> bulk_offset;
+      std::vector<double>         bulk_mu;
+      double                      bulk_sum = 0, bulk_abs_sum = 0;
 
       // Phases per slot, the factor table and the gate.
       std::vector<unsigned char> phase_slot;

@@ -98,6 +98,21 @@ namespace PeriDEAL
       std::vector<UnusedEntry>
       unused_entries(const Simulator<dim> &simulator) const override;
 
+      /// TimeSteppingProblem's checks, and with the collocation
+      /// quadrature a model that supports it
+      /// (Models::DiffusionModel::supports_collocation()) and the
+      /// continuum calibration of the micro-diffusivity.
+      void
+      check_input(const Simulator<dim> &simulator) const override;
+
+      /// True: the bulk nodes take the collocation row where
+      /// 'Quadrature/Scheme' asks for it.
+      bool
+      supports_collocation() const override
+      {
+        return true;
+      }
+
       void
       run(Simulator<dim> &simulator) override;
 

@@ -118,6 +118,15 @@ namespace PeriDEAL
       virtual bool
       uses_linear_solver() const;
 
+      /**
+       * Whether the problem type evaluates nodes with the collocation
+       * quadrature where 'Quadrature/Scheme' asks for it
+       * (Quadrature::QuadratureScheme::collocation()). Default: false; the
+       * simulator refuses the scheme otherwise.
+       */
+      virtual bool
+      supports_collocation() const;
+
       /// Whether runs use the simulator's 'Material model' (elasticity).
       virtual bool
       uses_material_model() const;

@@ -43,6 +43,11 @@ namespace PeriDEAL
       void
       check_input(const Simulator<dim> &simulator) const override;
 
+      /// True: the nodal system ('Boundary treatment = none') evaluates
+      /// the collocation rows (bond-based models, matrix-free).
+      bool
+      supports_collocation() const override;
+
       /// Those of 'Boundary conditions', the failure and inertia entries
       /// of the material model, and the analytical displacement without a
       /// comparison.
@@ -53,6 +58,10 @@ namespace PeriDEAL
       run(Simulator<dim> &simulator) override;
 
     private:
+      /// The entries that the collocation scheme needs (check_input()).
+      void
+      check_collocation_input(const Simulator<dim> &simulator) const;
+
       void
       postprocess(Simulator<dim> &simulator);
 

@@ -23,6 +23,7 @@
 #include <perideal/problems/mesh_generator.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/quadrature/partial_volume.h>
+#include <perideal/quadrature/quadrature_scheme.h>
 #include <perideal/solvers/linear_solver.h>
 
 #include <map>
@@ -140,6 +141,14 @@ namespace PeriDEAL
 
       const std::string &
       get_partial_volume_name() const;
+
+      /// The quadrature scheme ('Quadrature/Scheme').
+      const Quadrature::QuadratureScheme<dim> &
+      get_quadrature_scheme() const;
+
+      /// 'Quadrature/Scheme' as given.
+      const std::string &
+      get_quadrature_scheme_name() const;
 
       /// The horizon \f$\delta\f$.
       double
@@ -264,7 +273,7 @@ namespace PeriDEAL
       Timer              wall_clock;
 
       // Input.
-      std::string               problem_name;
+      std::string problem_name;
       /// The coarse mesh ('Geometry/Mesh').
       std::unique_ptr<MeshGenerator<dim>> mesh_generator;
       unsigned int                        global_refinements = 0;
@@ -274,24 +283,26 @@ namespace PeriDEAL
         m_ratio,
         length
       };
-      HorizonSpecification      horizon_specification =
+      HorizonSpecification horizon_specification =
         HorizonSpecification::m_ratio;
-      double                    m_ratio        = 3;
-      double                    horizon_length = 0;
-      std::string               algorithm_name, model_name;
-      bool                      compare_with_analytical = false;
-      std::string               summary_file;
-      std::string               node_data_file;
+      double      m_ratio        = 3;
+      double      horizon_length = 0;
+      std::string algorithm_name, model_name;
+      bool        compare_with_analytical = false;
+      std::string summary_file;
+      std::string node_data_file;
 
-      std::unique_ptr<ProblemType<dim>>               problem;
-      std::unique_ptr<Quadrature::PartialVolume<dim>> algorithm;
-      std::unique_ptr<Models::Model<dim>>             model;
-      std::string                                     treatment_name;
-      std::unique_ptr<Boundary::BoundaryTreatment>    treatment;
-      Boundary::BoundaryConditions<dim>               boundary_conditions;
-      std::unique_ptr<Functions::ParsedFunction<dim>> analytical_solution;
-      Solvers::LinearSolver                           linear_solver;
-      IO::SolutionOutput<dim>                         output;
+      std::unique_ptr<ProblemType<dim>>                  problem;
+      std::unique_ptr<Quadrature::PartialVolume<dim>>    algorithm;
+      std::string                                        quadrature_scheme_name;
+      std::unique_ptr<Quadrature::QuadratureScheme<dim>> quadrature_scheme;
+      std::unique_ptr<Models::Model<dim>>                model;
+      std::string                                        treatment_name;
+      std::unique_ptr<Boundary::BoundaryTreatment>       treatment;
+      Boundary::BoundaryConditions<dim>                  boundary_conditions;
+      std::unique_ptr<Functions::ParsedFunction<dim>>    analytical_solution;
+      Solvers::LinearSolver                              linear_solver;
+      IO::SolutionOutput<dim>                            output;
 
       // Discretisation.
       std::unique_ptr<parallel::TriangulationBase<dim>> triangulation;

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
+#include <sstream>
 #include <vector>
 
 namespace PeriDEAL
@@ -144,6 +145,36 @@ namespace PeriDEAL
         }
       bond_state.reinit(nodes, simulator.get_neighbor_lists());
       op.reinit(nodes, simulator.get_neighbor_lists(), kernel, &bond_state);
+      if (const auto *settings =
+            simulator.get_quadrature_scheme().collocation())
+        {
+          const double condition = op.use_collocation(*settings);
+          // Growing modes (doc/collocation.md Sect. 7) blow up any explicit
+          // step.
+          AssertThrow(
+            op.collocation_symbol() <= 1e-10 ||
+              integrator->solves_linear_systems(),
+            ExcInvalidInput("Quadrature/collocation/Order",
+                            std::to_string(settings->order),
+                            "the bulk collocation row of this order at this "
+                            "m-ratio has growing modes (largest symbol "
+                            "eigenvalue " +
+                              format_number(op.collocation_symbol()) +
+                              " of the most negative; doc/collocation.md Sect. "
+                              "7), which explicit time stepping amplifies at "
+                              "any step; use 'Order = 2' or implicit time "
+                              "stepping"));
+          std::ostringstream line;
+          line << "quadrature '" << simulator.get_quadrature_scheme_name()
+               << "': order " << settings->order << ", "
+               << (op.uses_collocation() ?
+                     std::to_string(op.n_collocation_nodes()) +
+                       " collocation nodes, cond(A) " :
+                     std::string("the bulk stays standard: cond(A) "))
+               << std::setprecision(2) << std::scientific << condition
+               << std::defaultfloat;
+          simulator.print_progress(line.str());
+        }
       for (auto *v : {&c, &lc, &s, &rhs, &row_sum})
         op.initialize_vector(*v);
       op.row_sums(row_sum);

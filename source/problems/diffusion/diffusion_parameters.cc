@@ -312,6 +312,33 @@ namespace PeriDEAL
 
 
     template <int dim>
+    void
+    Diffusion<dim>::check_input(const Simulator<dim> &simulator) const
+    {
+      TimeSteppingProblem<dim>::check_input(simulator);
+      if (simulator.get_quadrature_scheme().collocation() == nullptr)
+        return;
+      const std::string &scheme = simulator.get_quadrature_scheme_name();
+      AssertThrow(model->supports_collocation(),
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  scheme,
+                                  "the diffusion model '" + model_name +
+                                    "' does not run with the collocation "
+                                    "quadrature yet (its phases need the "
+                                    "standard scheme); use 'Scheme = "
+                                    "standard' or 'diffusion/Model = "
+                                    "plain'"));
+      AssertThrow(!kernel.calibrates_on_lattice(),
+                  ExcInvalidInput(section + "/Micro-diffusivity calibration",
+                                  "lattice",
+                                  "the collocation quadrature integrates the "
+                                  "kernel over the ball exactly and needs "
+                                  "the continuum micro-diffusivity; set "
+                                  "'continuum'"));
+    }
+
+
+    template <int dim>
     std::vector<UnusedEntry>
     Diffusion<dim>::unused_entries(const Simulator<dim> &) const
     {
@@ -357,7 +384,8 @@ namespace PeriDEAL
   template void Diffusion<dim>::declare_parameters(ParameterHandler &); \
   template void Diffusion<dim>::parse_parameters(ParameterHandler &);   \
   template std::vector<UnusedEntry> Diffusion<dim>::unused_entries(     \
-    const Simulator<dim> &) const;
+    const Simulator<dim> &) const;                                      \
+  template void Diffusion<dim>::check_input(const Simulator<dim> &) const;
     PERIDEAL_DIFFUSION_INSTANTIATE(PERIDEAL_INSTANTIATE)
 #undef PERIDEAL_INSTANTIATE
   } // namespace Problems

@@ -1,0 +1,235 @@
+#ifndef perideal_quadrature_collocation_h
+#define perideal_quadrature_collocation_h
+
+/**
+ * @file
+ * The meshfree collocation quadrature of the hybrid-collocation paper
+ * (Sect. 3, Eqs. 32-60): the monomial basis, the choice of collocation
+ * nodes with an auxiliary grid (Remark 2), the weighted least-squares fit
+ * (Eqs. 34-41), the moments of a kernel over the full ball (the L vectors
+ * of Eqs. 47-52 and 57-60) and a node's row W_ij = L Q_i (doc/collocation.md
+ * Sects. 2-6, where every formula is derived and checked).
+ */
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace PeriDEAL
+{
+  namespace Quadrature
+  {
+    using namespace dealii;
+
+    /**
+     * The complete monomials \f$\xi^\alpha\f$ of degree at most k in dim
+     * variables, graded and x-power first (3D, k = 2: 1, x, y, z, x², xy,
+     * xz, y², yz, z²; Eq. 33).
+     */
+    template <int dim>
+    class MonomialBasis
+    {
+    public:
+      explicit MonomialBasis(const unsigned int order);
+
+      /// The order k.
+      unsigned int
+      order() const
+      {
+        return k;
+      }
+
+      /// The number n_p of monomials.
+      unsigned int
+      size() const
+      {
+        return exponents.size();
+      }
+
+      /// The exponents of monomial @p a.
+      const std::array<unsigned int, dim> &
+      exponent(const unsigned int a) const
+      {
+        return exponents[a];
+      }
+
+      /// The degree of monomial @p a.
+      unsigned int
+      degree(const unsigned int a) const;
+
+      /// The values of all monomials at @p x, into @p values (size()).
+      void
+      evaluate(const Tensor<1, dim> &x, double *values) const;
+
+    private:
+      unsigned int                               k;
+      std::vector<std::array<unsigned int, dim>> exponents;
+    };
+
+
+    /// n_p: the number of monomials of degree at most @p order in @p dim
+    /// variables.
+    unsigned int
+    n_monomials(const unsigned int dim, const unsigned int order);
+
+    /// The number N_d(k_a) of points a of Z^d with |a| <= k_a (the
+    /// auxiliary grid of Remark 2 with k_a divisions of the horizon).
+    unsigned int
+    auxiliary_grid_size(const unsigned int dim, const unsigned int divisions);
+
+    /**
+     * The divisions k_a of the auxiliary grid whose size is closest to
+     * @p n_collocation (a tie takes the larger k_a), doc/collocation.md
+     * Sect. 2.2.
+     */
+    unsigned int
+    auxiliary_divisions(const unsigned int dim,
+                        const unsigned int n_collocation);
+
+    /**
+     * The default number of collocation nodes of an order in a dimension:
+     * 1D 5, 11, 13 (Table 1), 2D 29, 49 (Table 2), 3D 33, 123
+     * (doc/collocation.md Sect. 7). Throws for an order the dimension does
+     * not offer.
+     */
+    unsigned int
+    default_collocation_nodes(const unsigned int dim, const unsigned int order);
+
+    /// Whether the collocation scheme offers @p order in @p dim: 2, 4, 6
+    /// in 1D, 2 and 4 in 2D and 3D.
+    bool
+    offers_order(const unsigned int dim, const unsigned int order);
+
+
+    /**
+     * The WLS collocation of one cloud: the choice of collocation nodes,
+     * the fit matrix Q_i and its conditioning, for a given order, number of
+     * collocation nodes (through the auxiliary grid) and horizon. Everything
+     * depends on the bond vectors only, so equal neighbourhoods give equal
+     * results to the last bit.
+     */
+    template <int dim>
+    class CollocationFit
+    {
+    public:
+      /**
+       * @p order: 2, 4 (or 6 in 1D); @p n_collocation: the requested count
+       * (0: the default); @p horizon: \f$\delta\f$, also the weight radius
+       * \f$\tilde r\f$ of Eq. 36 and the length that scales the basis.
+       */
+      CollocationFit(const unsigned int order,
+                     const unsigned int n_collocation,
+                     const double       horizon);
+
+      /// The basis.
+      const MonomialBasis<dim> &
+      basis() const
+      {
+        return monomials;
+      }
+
+      /// The divisions k_a of the auxiliary grid.
+      unsigned int
+      divisions() const
+      {
+        return k_a;
+      }
+
+      /**
+       * The collocation nodes among the family @p xi (bond vectors
+       * x_j - x_i with |xi| <= horizon, the node itself as the zero
+       * vector among them): each auxiliary point takes its nearest
+       * family node, a tie the one nearer to the source and then all
+       * remaining tied ones (Sect. 2.2). Returns the indices into @p xi in
+       * increasing order.
+       */
+      std::vector<unsigned int>
+      select(const std::vector<Tensor<1, dim>> &xi) const;
+
+      /**
+       * The fit of the cloud @p xi (the selected bond vectors): @p q
+       * becomes Q_i (n_p x n_c) in the physical basis, so that the fitted
+       * Taylor coefficients of a field g are q g. Computed through the SVD
+       * of W^{1/2} M in the basis scaled by the horizon. Returns
+       * cond_2(A_i) of the scaled basis (infinity if singular).
+       */
+      double
+      fit(const std::vector<Tensor<1, dim>> &xi, FullMatrix<double> &q) const;
+
+      /// The weight of Eq. 36 with \f$\tilde r = \delta\f$.
+      double
+      weight(const Tensor<1, dim> &xi) const;
+
+    private:
+      MonomialBasis<dim> monomials;
+      unsigned int       k_a;
+      double             horizon;
+    };
+
+
+    /**
+     * The angular moment \f$\Omega_d(\beta) = \int_{S^{d-1}} n^\beta dS\f$
+     * (doc/collocation.md Sect. 1).
+     */
+    template <int dim>
+    double
+    sphere_moment(const std::array<unsigned int, dim> &beta);
+
+    /**
+     * The moments of a bond kernel that is radial times n ⊗ n,
+     * \f$k(\xi) = g(|\xi|)\, n \otimes n\f$ (the linearised bond-based
+     * pair stiffness per unit volume): \f$L_{ba}[\alpha] = \int_B g(r)
+     * n_b n_a \xi^\alpha dV\f$ for every monomial of @p basis (zero for
+     * the constant), by Gauss quadrature of the radial part and
+     * sphere_moment() of the angular one. @p radial must be smooth on
+     * (0, horizon].
+     */
+    template <int dim>
+    std::vector<Tensor<2, dim>>
+    tensor_moments(const MonomialBasis<dim>            &basis,
+                   const std::function<double(double)> &radial,
+                   const double                         horizon);
+
+    /**
+     * The moments of a scalar radial kernel (diffusion):
+     * \f$L[\alpha] = \int_B g(r) \xi^\alpha dV\f$ (zero for the constant).
+     */
+    template <int dim>
+    std::vector<double>
+    scalar_moments(const MonomialBasis<dim>            &basis,
+                   const std::function<double(double)> &radial,
+                   const double                         horizon);
+
+    /// A row's d x d blocks: W_j = sum_alpha L[alpha] Q[alpha, j].
+    template <int dim>
+    std::vector<Tensor<2, dim>>
+    tensor_row(const std::vector<Tensor<2, dim>> &moments,
+               const FullMatrix<double>          &q);
+
+    /// A row's scalar weights: w_j = sum_alpha L[alpha] Q[alpha, j].
+    std::vector<double>
+    scalar_row(const std::vector<double> &moments, const FullMatrix<double> &q);
+
+    /**
+     * The largest eigenvalue of the Fourier symbol
+     * \f$\sigma(k) = \sum_j W_j (\cos(k\cdot\xi_j) - 1)\f$ of a shared
+     * stencil on a lattice of spacing @p h, over a grid of
+     * @p n_per_axis wave numbers per axis in the Brillouin zone, relative
+     * to the magnitude of the most negative one (doc/collocation.md Sect.
+     * 7): positive means growing modes.
+     */
+    template <int dim>
+    double
+    largest_symbol_eigenvalue(const std::vector<Tensor<1, dim>> &xi,
+                              const std::vector<Tensor<2, dim>> &blocks,
+                              const double                       h,
+                              const unsigned int                 n_per_axis);
+  } // namespace Quadrature
+} // namespace PeriDEAL
+
+#endif

@@ -1,0 +1,252 @@
+// BondOperator: the collocation quadrature of the nodes with a full
+// neighbourhood (doc/collocation.md Sects. 6 and 11): the shared bulk row
+// from one WLS fit on the lattice, its pass over chunks of consecutive
+// slots, and its force at one node.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/operators/bond_operator.h>
+#include <perideal/operators/bond_operator.templates.h>
+#include <perideal/quadrature/collocation.h>
+
+#include <cmath>
+
+namespace PeriDEAL
+{
+  namespace Operators
+  {
+    template <int dim>
+    typename BondOperator<dim>::CollocationReport
+    BondOperator<dim>::use_collocation(
+      const Quadrature::CollocationSettings &settings)
+    {
+      const MPI_Comm comm = nodes->get_communicator();
+      AssertThrow(layout.use_lattice,
+                  ExcMessage("The collocation quadrature needs a uniform grid "
+                             "of cubes (one shared bulk row); this mesh is "
+                             "not one. Use 'Quadrature/Scheme = standard'."));
+      AssertThrow(!state_based && !finite && !with_failure,
+                  ExcMessage("The collocation quadrature is built for "
+                             "bond-based models with linear kinematics and "
+                             "no bond failure so far."));
+
+      // The family of a bulk node: the node itself and the stencil offsets
+      // within the horizon (the cells that the ball only cuts are not
+      // family nodes of the collocation scheme), with their stencil index.
+      const double                h = lists->lattice().spacing();
+      std::vector<Tensor<1, dim>> family(1);
+      std::vector<int>            stencil_index(1, -1);
+      for (unsigned int k = 0; k < lists->stencil().size(); ++k)
+        {
+          Tensor<1, dim> xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            xi[d] = lists->stencil()[k].offset[d] * h;
+          if (xi.norm() <= horizon * (1 + 1e-12))
+            {
+              family.push_back(xi);
+              stencil_index.push_back(k);
+            }
+        }
+      const Quadrature::CollocationFit<dim> fit(settings.order,
+                                                settings.n_collocation,
+                                                horizon);
+      const std::vector<unsigned int>       selected = fit.select(family);
+      std::vector<Tensor<1, dim>>           cloud;
+      for (const unsigned int j : selected)
+        cloud.push_back(family[j]);
+
+      CollocationReport report;
+      report.n_collocation = cloud.size();
+      report.n_monomials   = fit.basis().size();
+      AssertThrow(
+        cloud.size() >= fit.basis().size(),
+        ExcInvalidInput(
+          "Quadrature/collocation/Collocation nodes",
+          std::to_string(settings.n_collocation),
+          "the auxiliary grid for it gives " + std::to_string(cloud.size()) +
+            " collocation nodes at this m-ratio, and a fit of order " +
+            std::to_string(settings.order) + " needs at least " +
+            std::to_string(fit.basis().size()) +
+            "; ask for more nodes (0: the default), a lower "
+            "'Order' or a larger m-ratio"));
+      FullMatrix<double> q;
+      report.condition = fit.fit(cloud, q);
+      // The linearised bond-based pair stiffness per unit volume,
+      // 2 beta(r) n (x) n (s = 1 at every node).
+      const auto moments = Quadrature::tensor_moments<dim>(
+        fit.basis(),
+        [&](const double r) {
+          return 2. * model->extension_constant(r, horizon);
+        },
+        horizon);
+      const std::vector<Tensor<2, dim>> row =
+        Quadrature::tensor_row(moments, q);
+      report.symbol =
+        Quadrature::largest_symbol_eigenvalue<dim>(cloud,
+                                                   row,
+                                                   h,
+                                                   dim == 3 ? 12 : 40);
+
+      std::size_t n_full = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        if (lists->has_full_stencil(i))
+          ++n_full;
+      n_full = Utilities::MPI::sum(n_full, comm);
+      report.n_cut_nodes =
+        Utilities::MPI::sum(std::size_t(nodes->n_owned()), comm) - n_full;
+
+      // Every process has fitted the same row: the decision is the same
+      // everywhere.
+      const bool well_conditioned =
+        report.condition <= Quadrature::CollocationSettings::condition_limit;
+      AssertThrow(
+        well_conditioned || settings.fall_back,
+        ExcInvalidInput("Quadrature/collocation/Ill-conditioned clouds",
+                        "error",
+                        "the collocation cloud of the bulk nodes (" +
+                          std::to_string(cloud.size()) + " nodes, order " +
+                          std::to_string(settings.order) +
+                          ") has cond(A) = " + format_number(report.condition) +
+                          " > 1e12; choose another 'Collocation nodes' or "
+                          "'Order', or 'fall back' to the standard scheme"));
+      collocation_node.assign(nodes->size(), 0);
+      collocation_row = CollocationRow();
+      if (!well_conditioned)
+        {
+          report.n_ill_conditioned = n_full;
+          build_work_lists();
+          collocation_chunks.clear();
+          return report;
+        }
+
+      // The row without the node itself (sum_k W_k = 0 to round-off, so
+      // that W_0 u_i = -sum_{k>0} W_k u_i exactly: a rigid translation
+      // gives no force), times the node's volume h^dim.
+      const double volume = std::pow(h, dim);
+      for (unsigned int j = 0; j < cloud.size(); ++j)
+        {
+          const int k = stencil_index[selected[j]];
+          if (k < 0)
+            continue;
+          collocation_row.offset.push_back(layout.stencil_offset[k]);
+          collocation_row.stencil_index.push_back(k);
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                collocation_row.w[c * dim + d].push_back(volume * row[j][c][d]);
+                collocation_row.sum[c][d] += volume * row[j][c][d];
+              }
+        }
+      // K_ii = V sum_k W_k must be positive definite for the static
+      // solvers (and is for C2). The order-4 rows with the weight of Eq. 36
+      // have a positive centre weight at m >= 3 (a negative K_ii): their
+      // symbol has growing modes, doc/collocation.md Sect. 7.
+      bool positive_diagonal = true;
+      for (unsigned int c = 0; c < dim; ++c)
+        positive_diagonal = positive_diagonal && collocation_row.sum[c][c] > 0;
+      AssertThrow(positive_diagonal,
+                  ExcInvalidInput(
+                    "Quadrature/collocation/Order",
+                    std::to_string(settings.order),
+                    "the bulk collocation row of this order at this m-ratio "
+                    "has a non-positive diagonal (its own node weighs "
+                    "against its neighbours), and its Fourier symbol has "
+                    "growing modes (largest eigenvalue " +
+                      format_number(report.symbol) +
+                      " of the most negative; doc/collocation.md Sect. 7): "
+                      "the static operator is indefinite. Use 'Order = 2'"));
+
+      std::size_t n_collocation_nodes = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        if (layout.on_stencil(i))
+          {
+            collocation_node[i] = 1;
+            ++n_collocation_nodes;
+          }
+      report.n_collocation_nodes =
+        Utilities::MPI::sum(n_collocation_nodes, comm);
+      build_work_lists();
+      layout.make_chunks(
+        [&](const unsigned int i) { return is_collocation_node(i); },
+        collocation_chunks);
+      return report;
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::collocation_pass() const
+    {
+      const std::size_t n_offsets = collocation_row.offset.size();
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        collocation_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double force[dim][chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = collocation_chunks[c].first_slot;
+              const unsigned int len = collocation_chunks[c].length;
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int l = 0; l < len; ++l)
+                  force[a][l] = 0;
+              // In the order of the row (fixed by the bond vectors), the
+              // same for every node, process and thread.
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = collocation_row.offset[k];
+                  for (unsigned int b = 0; b < dim; ++b)
+                    {
+                      const double *ui = u_slot[b].data() + s0;
+                      const double *uj = ui + o;
+                      for (unsigned int a = 0; a < dim; ++a)
+                        {
+                          const double w = collocation_row.w[a * dim + b][k];
+#pragma omp simd
+                          for (unsigned int l = 0; l < len; ++l)
+                            force[a][l] += w * (uj[l] - ui[l]);
+                        }
+                    }
+                }
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int l = 0; l < len; ++l)
+                  f_slot[a][s0 + l] = force[a][l];
+            }
+        },
+        LoopLayout<dim>::chunk_grain);
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BondOperator<dim>::collocation_force(const std::size_t si) const
+    {
+      // The operations of collocation_pass(), lane by lane.
+      Tensor<1, dim> f;
+      for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
+        for (unsigned int b = 0; b < dim; ++b)
+          {
+            const double du =
+              u_slot[b][si + collocation_row.offset[k]] - u_slot[b][si];
+            for (unsigned int a = 0; a < dim; ++a)
+              f[a] += collocation_row.w[a * dim + b][k] * du;
+          }
+      return f;
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim)                                              \
+  template BondOperator<dim>::CollocationReport                                \
+  BondOperator<dim>::use_collocation(const Quadrature::CollocationSettings &); \
+  template void           BondOperator<dim>::collocation_pass() const;         \
+  template Tensor<1, dim> BondOperator<dim>::collocation_force(                \
+    const std::size_t) const;
+    PERIDEAL_INSTANTIATE(2)
+    PERIDEAL_INSTANTIATE(3)
+#undef PERIDEAL_INSTANTIATE
+  } // namespace Operators
+} // namespace PeriDEAL
