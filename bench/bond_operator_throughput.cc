@@ -1,6 +1,9 @@
 // Throughput of the matrix-free BondOperator: bond visits per second per
 // core in the uniform bulk, for the LPS (two passes, both counted) and the
-// bond-based model in 2D and 3D, on 1 and 2 threads, next to the memory
+// bond-based model in 2D and 3D (standard quadrature, and the bond-based
+// linear operator with the collocation quadrature of its full-ball nodes,
+// kernel 'collocation': a visit is then one entry of the row), on 1 and 2
+// threads, next to the memory
 // bandwidth of the machine measured in the same run (a STREAM-like triad),
 // and next to the apply() of the test oracle (Testing::ReferenceBondOperator
 // of tests/common: explicit bond data, Trilinos vectors).
@@ -79,7 +82,7 @@ namespace
     double       seconds_per_apply = 0;
     double       reference_seconds = 0;
     std::size_t  visits            = 0;
-    unsigned int stencil           = 0;
+    unsigned int stencil           = 0; // standard or collocation bulk
     unsigned int n_nodes           = 0;
     double       bytes_per_apply   = 0;
   };
@@ -91,7 +94,8 @@ namespace
           const double       m_ratio,
           const unsigned int repetitions,
           const bool         with_reference,
-          const bool         fracture)
+          const bool         fracture,
+          const bool         collocation)
   {
     const MPI_Comm                            comm = MPI_COMM_WORLD;
     parallel::distributed::Triangulation<dim> tria(comm);
@@ -126,6 +130,13 @@ namespace
     // bond (a critical stretch no bond reaches here).
     if (fracture)
       op.set_kinematics(true, std::vector<double>(nodes.size(), 1.));
+    // The collocation rows (order 2, the default number of nodes) of every
+    // node with a full ball.
+    std::size_t n_collocation = 0;
+    if (collocation)
+      n_collocation =
+        op.use_collocation(PeriDEAL::Quadrature::CollocationSettings())
+          .n_collocation_nodes;
 
     typename Operators::BondOperator<dim>::VectorType u, f;
     op.initialize_dof_vector(u);
@@ -144,8 +155,9 @@ namespace
     Result result;
     result.seconds_per_apply = Utilities::MPI::max(best, comm);
     result.visits            = Utilities::MPI::sum(op.n_bond_visits(), comm);
-    result.stencil           = Utilities::MPI::sum(op.n_stencil_nodes(), comm);
-    result.n_nodes           = tria.n_global_active_cells();
+    result.stencil =
+      Utilities::MPI::sum(op.n_stencil_nodes(), comm) + n_collocation;
+    result.n_nodes = tria.n_global_active_cells();
     // Least traffic of one application per owned node: copy in (read the
     // vector, write the slots), dilatation pass (read u, write s theta),
     // force pass (read u, s theta, s; write f), copy out.
@@ -224,12 +236,14 @@ main(int argc, char **argv)
     std::string  model;
     unsigned int refinements;
     double       m_ratio;
-    bool         fracture = false;
+    bool         fracture    = false;
+    bool         collocation = false;
   };
   std::vector<Case> cases =
     quick ? std::vector<Case>{{3, "linear peridynamic solid", 4, 3},
                               {3, "bond-based", 4, 3},
                               {3, "bond-based", 4, 3, true},
+                              {3, "bond-based", 4, 3, false, true},
                               {2, "linear peridynamic solid", 6, 3}} :
             std::vector<Case>{{3, "linear peridynamic solid", 5, 3},
                               {3, "linear peridynamic solid", 6, 3},
@@ -239,7 +253,16 @@ main(int argc, char **argv)
                               {3, "linear peridynamic solid", 6, 3, true},
                               {2, "linear peridynamic solid", 9, 3},
                               {2, "bond-based", 9, 3},
-                              {2, "bond-based", 9, 3, true}};
+                              {2, "bond-based", 9, 3, true},
+                              // Standard against collocation (issue 23):
+                              // m = 4 in 3D, two grids (the share of the
+                              // boundary nodes, standard in both, differs).
+                              {3, "bond-based", 5, 4},
+                              {3, "bond-based", 5, 4, false, true},
+                              {3, "bond-based", 6, 4},
+                              {3, "bond-based", 6, 4, false, true},
+                              {2, "bond-based", 9, 4},
+                              {2, "bond-based", 9, 4, false, true}};
   const unsigned int repetitions = quick ? 2 : 5;
   if (!selected.empty())
     {
@@ -270,19 +293,21 @@ main(int argc, char **argv)
       {
         MultithreadInfo::set_thread_limit(t);
         const bool reference =
-          (t == 1) && c.refinements <= (c.dim == 3 ? 5 : 8);
+          (t == 1) && c.refinements <= (c.dim == 3 ? 5 : 8) && !c.collocation;
         const Result r     = c.dim == 3 ? measure<3>(c.model,
                                                  c.refinements,
                                                  c.m_ratio,
                                                  repetitions,
                                                  reference,
-                                                 c.fracture) :
+                                                 c.fracture,
+                                                 c.collocation) :
                                           measure<2>(c.model,
                                                  c.refinements,
                                                  c.m_ratio,
                                                  repetitions,
                                                  reference,
-                                                 c.fracture);
+                                                 c.fracture,
+                                                 c.collocation);
         const double rate  = r.visits / r.seconds_per_apply;
         const double cores = double(t) * n_ranks;
         const double fraction =
@@ -290,27 +315,33 @@ main(int argc, char **argv)
         if (root)
           {
             std::cout << c.dim << "D " << std::setw(25) << std::left << c.model
-                      << (c.fracture ? " fracture" : "   linear") << std::right
-                      << " nodes " << std::setw(8) << r.n_nodes << "  ranks "
-                      << n_ranks << "  threads " << t << ": "
+                      << (c.collocation ? " colloc." :
+                          c.fracture    ? " fracture" :
+                                          "   linear")
+                      << std::right << " nodes " << std::setw(8) << r.n_nodes
+                      << "  ranks " << n_ranks << "  threads " << t << ": "
                       << std::setprecision(3) << std::scientific
-                      << r.seconds_per_apply << " s/apply, "
-                      << rate / cores / 1e6 << std::defaultfloat
-                      << " M bond visits/s/core, " << std::setprecision(3)
-                      << 100 * fraction << " % of triad bandwidth ("
-                      << bandwidth[t] / 1e9 << " GB/s)";
+                      << r.seconds_per_apply << " s/apply ("
+                      << r.seconds_per_apply / r.n_nodes * 1e9 << " ns/node, "
+                      << r.stencil << " bulk nodes), " << rate / cores / 1e6
+                      << std::defaultfloat << " M bond visits/s/core, "
+                      << std::setprecision(3) << 100 * fraction
+                      << " % of triad bandwidth (" << bandwidth[t] / 1e9
+                      << " GB/s)";
             if (r.reference_seconds > 0)
               std::cout << "; assembled-path apply " << r.reference_seconds
                         << " s (" << r.reference_seconds / r.seconds_per_apply
                         << "x)";
             std::cout << std::endl;
             csv << c.dim << ",\"" << c.model << "\","
-                << (c.fracture ? "fracture" : "linear") << ',' << c.m_ratio
-                << ',' << r.n_nodes << ',' << r.stencil << ',' << n_ranks << ','
-                << t << ',' << std::setprecision(6) << r.seconds_per_apply
-                << ',' << r.visits << ',' << rate << ',' << rate / cores << ','
-                << bandwidth[t] << ',' << fraction << ',' << r.reference_seconds
-                << '\n';
+                << (c.collocation ? "collocation" :
+                    c.fracture    ? "fracture" :
+                                    "linear")
+                << ',' << c.m_ratio << ',' << r.n_nodes << ',' << r.stencil
+                << ',' << n_ranks << ',' << t << ',' << std::setprecision(6)
+                << r.seconds_per_apply << ',' << r.visits << ',' << rate << ','
+                << rate / cores << ',' << bandwidth[t] << ',' << fraction << ','
+                << r.reference_seconds << '\n';
           }
       }
   return 0;
