@@ -236,7 +236,14 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
           const std::size_t si = layout.slot[i];
-          const double      theta =
+          if (is_collocation_node(i))
+            {
+              // The linear collocation row: -1/2 u_i . F_i.
+              for (unsigned int d = 0; d < dim; ++d)
+                energy -= 0.5 * u_slot[d][si] * f_slot[d][si];
+              continue;
+            }
+          const double theta =
             state_based && s_slot[si] != 0 ? t_slot[si] / s_slot[si] : 0.;
           energy += 0.5 * s_slot[si] * e_slot[si] +
                     0.5 * (*nodes)[i].volume() * lambda * theta * theta;
@@ -257,12 +264,16 @@ namespace PeriDEAL
           if (state_based)
             nonlinear_dilatation_pass<true>();
           nonlinear_force_pass<true, with_energy>();
+          if (!collocation_chunks.empty())
+            collocation_pass();
         }
       else if (with_failure)
         {
           if (state_based)
             nonlinear_dilatation_pass<false>();
           nonlinear_force_pass<false, with_energy>();
+          if (!collocation_chunks.empty())
+            collocation_pass();
         }
       else
         {

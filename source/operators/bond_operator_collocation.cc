@@ -29,10 +29,11 @@ namespace PeriDEAL
                   ExcMessage("The collocation quadrature needs a uniform grid "
                              "of cubes (one shared bulk row); this mesh is "
                              "not one. Use 'Quadrature/Scheme = standard'."));
-      AssertThrow(!state_based && !finite && !with_failure,
+      AssertThrow(!state_based,
                   ExcMessage("The collocation quadrature is built for "
-                             "bond-based models with linear kinematics and "
-                             "no bond failure so far."));
+                             "bond-based models so far (the collocation rows "
+                             "are linearised; standard nodes keep the "
+                             "kinematics and failure of set_kinematics())."));
 
       // The family of a bulk node: the node itself and the stencil offsets
       // within the horizon (the cells that the ball only cuts are not
@@ -115,6 +116,7 @@ namespace PeriDEAL
                           "'Order', or 'fall back' to the standard scheme"));
       collocation_node.assign(nodes->size(), 0);
       collocation_row = CollocationRow();
+      missed_switches = 0;
       if (!well_conditioned)
         {
           report.n_ill_conditioned = n_full;
@@ -174,6 +176,102 @@ namespace PeriDEAL
         [&](const unsigned int i) { return is_collocation_node(i); },
         collocation_chunks);
       return report;
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::make_standard(const std::vector<unsigned int> &switched)
+    {
+      for (const unsigned int i : switched)
+        collocation_node[i] = 0;
+      const std::size_t n_switched =
+        Utilities::MPI::sum(switched.size(), nodes->get_communicator());
+      if (n_switched > 0)
+        {
+          build_work_lists();
+          layout.make_chunks(
+            [&](const unsigned int i) { return is_collocation_node(i); },
+            collocation_chunks);
+        }
+      return n_switched;
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::switch_critical_nodes(const VectorType &displacement,
+                                             const double      fraction)
+    {
+      AssertThrow(with_failure && fraction > 0 && fraction < 1,
+                  ExcMessage("BondOperator::switch_critical_nodes() needs a "
+                             "failure criterion (set_kinematics()) and a "
+                             "fraction in (0, 1)."));
+      copy_in(displacement);
+      std::vector<char> critical(nodes->n_owned(), 0);
+      // Every bond of the full stencil of each collocation node, with the
+      // kinematics and the stretch of the failure test.
+      for (const Chunk &chunk : collocation_chunks)
+        for (unsigned int l = 0; l < chunk.length; ++l)
+          {
+            const std::size_t  si = chunk.first_slot + l;
+            const unsigned int i  = layout.node_of_slot(si);
+            for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
+              {
+                const std::size_t sj = si + layout.stencil_offset[k];
+                double            xi[dim], n[dim];
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    xi[d] = stencil.xi[d][k];
+                    n[d]  = stencil.n[d][k];
+                  }
+                const auto eta = [&](const unsigned int d) {
+                  return u_slot[d][sj] - u_slot[d][si];
+                };
+                const double e =
+                  finite ?
+                    BondKernel::extension<true, dim>(xi, n, stencil.r[k], eta) :
+                    BondKernel::extension<false, dim>(xi, n, stencil.r[k], eta);
+                const double s0      = std::min(s0_slot[si], s0_slot[sj]);
+                const double stretch = e * stencil.inv_r[k];
+                if (stretch >= fraction * s0)
+                  critical[i] = 1;
+                // Already past the critical stretch: the switch comes late
+                // (the bond would have broken in the standard scheme).
+                if (stretch >= s0)
+                  {
+                    critical[i] = 2;
+                    break;
+                  }
+              }
+          }
+      std::vector<unsigned int> switched;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        if (critical[i])
+          {
+            switched.push_back(i);
+            missed_switches += critical[i] == 2;
+          }
+      return make_standard(switched);
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::n_missed_switches() const
+    {
+      return Utilities::MPI::sum(missed_switches, nodes->get_communicator());
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::n_collocation_nodes() const
+    {
+      std::size_t count = 0;
+      for (const Chunk &chunk : collocation_chunks)
+        count += chunk.length;
+      return Utilities::MPI::sum(count, nodes->get_communicator());
     }
 
 
@@ -244,7 +342,14 @@ namespace PeriDEAL
   BondOperator<dim>::use_collocation(const Quadrature::CollocationSettings &); \
   template void           BondOperator<dim>::collocation_pass() const;         \
   template Tensor<1, dim> BondOperator<dim>::collocation_force(                \
-    const std::size_t) const;
+    const std::size_t) const;                                                  \
+  template std::size_t BondOperator<dim>::make_standard(                       \
+    const std::vector<unsigned int> &);                                        \
+  template std::size_t BondOperator<dim>::switch_critical_nodes(               \
+    const VectorType &,                                                        \
+    const double);                                                             \
+  template std::size_t BondOperator<dim>::n_missed_switches() const;           \
+  template std::size_t BondOperator<dim>::n_collocation_nodes() const;
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)
 #undef PERIDEAL_INSTANTIATE

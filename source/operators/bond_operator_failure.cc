@@ -28,12 +28,6 @@ namespace PeriDEAL
                                       comm) == 1,
                   ExcMessage("BondOperator::set_kinematics: one critical "
                              "stretch per node of the set."));
-      // (collocation_node is the same on every process.)
-      AssertThrow(collocation_node.empty() ||
-                    (!finite_deformation && stretch.empty()),
-                  ExcMessage("BondOperator: the collocation rows are "
-                             "linearised and unbreakable; finite kinematics "
-                             "and bond failure need the standard scheme."));
       finite           = finite_deformation;
       critical_stretch = stretch;
       with_failure     = false;
@@ -90,7 +84,23 @@ namespace PeriDEAL
       }
       const std::size_t n_new = state.synchronize();
       if (n_new > 0)
-        update_work_lists(state.take_changed_nodes());
+        {
+          const std::vector<unsigned int> changed = state.take_changed_nodes();
+          // A collocation node whose bond broke (from the standard end:
+          // the switch of Eq. 65 missed it) becomes standard, counted.
+          std::vector<unsigned int> missed;
+          for (const unsigned int i : changed)
+            if (i < nodes->n_owned() && is_collocation_node(i))
+              missed.push_back(i);
+          missed_switches += missed.size();
+          const bool any_missed =
+            Utilities::MPI::max(missed.empty() ? 0 : 1,
+                                nodes->get_communicator()) == 1;
+          if (any_missed)
+            make_standard(missed);
+          else
+            update_work_lists(changed);
+        }
       return n_new;
     }
 

@@ -102,6 +102,20 @@ namespace PeriDEAL
             largest = std::max(largest,
                                (row[c] + std::abs(C[c]) * A[i]) /
                                  (density * (*nodes)[i].volume()));
+          // A collocation row: K_ii = sum_k W_k, K_ij = -W_k (times V).
+          if (is_collocation_node(i))
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                double sum = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    sum += std::abs(collocation_row.sum[c][d]);
+                    for (const double w : collocation_row.w[c * dim + d])
+                      sum += std::abs(w);
+                  }
+                largest =
+                  std::max(largest, sum / (density * (*nodes)[i].volume()));
+              }
         }
       return Utilities::MPI::max(largest, nodes->get_communicator());
     }

@@ -282,6 +282,37 @@ namespace PeriDEAL
       CollocationReport
       use_collocation(const Quadrature::CollocationSettings &settings);
 
+      /**
+       * The adaptive switch of the hybrid scheme (hybrid-collocation paper
+       * Eq. 65): every owned collocation node with a bond whose stretch
+       * under @p displacement (ghost values up to date; the kinematics of
+       * set_kinematics()) reaches @p fraction times the bond's critical
+       * stretch \f$\min(s_{0,i}, s_{0,j})\f$ becomes standard for good,
+       * and the work lists are rebuilt. Each process decides for its own
+       * nodes from the bond's stretch, which is the same to the bit seen
+       * from either end, so every partition switches the same nodes.
+       * Needs a failure criterion (set_kinematics()). Collective; returns
+       * the number of nodes switched on all processes.
+       */
+      std::size_t
+      switch_critical_nodes(const VectorType &displacement,
+                            const double      fraction);
+
+      /**
+       * Owned nodes whose switch came late, summed over the processes
+       * since use_collocation(): a collocation node that lost a bond
+       * (broken from its standard end; commit_broken_bonds() then switches
+       * it) or that switch_critical_nodes() found with a bond already past
+       * its critical stretch. Zero when the switch saw every breaking bond
+       * coming. Collective.
+       */
+      std::size_t
+      n_missed_switches() const;
+
+      /// Owned collocation nodes on all processes. Collective.
+      std::size_t
+      n_collocation_nodes() const;
+
       /// Whether node @p i is evaluated by collocation (use_collocation()).
       bool
       is_collocation_node(const unsigned int i) const
@@ -423,6 +454,7 @@ namespace PeriDEAL
 
       /// 1 for the nodes evaluated by collocation; empty without.
       std::vector<char>  collocation_node;
+      std::size_t        missed_switches = 0;
       CollocationRow     collocation_row;
       std::vector<Chunk> collocation_chunks;
 
@@ -581,6 +613,12 @@ namespace PeriDEAL
       /// (bond_operator_collocation.cc).
       void
       collocation_pass() const;
+
+      /// Make the nodes flagged in @p switched standard, rebuild the work
+      /// lists and the collocation chunks if any process switched one
+      /// (collective); returns the global count.
+      std::size_t
+      make_standard(const std::vector<unsigned int> &switched);
 
       /// The force of collocation node @p i (slot @p si) from u_slot.
       Tensor<1, dim>
