@@ -238,9 +238,13 @@ namespace PeriDEAL
           const std::size_t si = layout.slot[i];
           if (is_collocation_node(i))
             {
-              // The linear collocation row: -1/2 u_i . F_i.
-              for (unsigned int d = 0; d < dim; ++d)
-                energy -= 0.5 * u_slot[d][si] * f_slot[d][si];
+              if (bond_energy_at_collocation_nodes)
+                // The pair energy of its bonds (set_collocation_energy()).
+                energy += 0.5 * s_slot[si] * node_bond_energy(i);
+              else
+                // The linear collocation row: -1/2 u_i . F_i.
+                for (unsigned int d = 0; d < dim; ++d)
+                  energy -= 0.5 * u_slot[d][si] * f_slot[d][si];
               continue;
             }
           const double theta =

@@ -14,6 +14,7 @@
 #include <perideal/quadrature/collocation.h>
 
 #include <cmath>
+#include <limits>
 
 namespace PeriDEAL
 {
@@ -22,7 +23,8 @@ namespace PeriDEAL
     template <int dim>
     typename BondOperator<dim>::CollocationReport
     BondOperator<dim>::use_collocation(
-      const Quadrature::CollocationSettings &settings)
+      const Quadrature::CollocationSettings &settings,
+      const std::vector<bool>               &standard)
     {
       const MPI_Comm comm = nodes->get_communicator();
       AssertThrow(layout.use_lattice,
@@ -117,6 +119,9 @@ namespace PeriDEAL
       collocation_node.assign(nodes->size(), 0);
       collocation_row = CollocationRow();
       missed_switches = 0;
+      scan_margin     = 0;
+      watched_nodes.clear();
+      watched_displacement.clear();
       if (!well_conditioned)
         {
           report.n_ill_conditioned = n_full;
@@ -162,15 +167,21 @@ namespace PeriDEAL
                       " of the most negative; doc/collocation.md Sect. 7): "
                       "the static operator is indefinite. Use 'Order = 2'"));
 
-      std::size_t n_collocation_nodes = 0;
+      std::size_t n_collocation_nodes = 0, n_fixed_standard = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         if (layout.on_stencil(i))
           {
-            collocation_node[i] = 1;
-            ++n_collocation_nodes;
+            if (!standard.empty() && standard[i])
+              ++n_fixed_standard;
+            else
+              {
+                collocation_node[i] = 1;
+                ++n_collocation_nodes;
+              }
           }
       report.n_collocation_nodes =
         Utilities::MPI::sum(n_collocation_nodes, comm);
+      report.n_fixed_standard = Utilities::MPI::sum(n_fixed_standard, comm);
       build_work_lists();
       layout.make_chunks(
         [&](const unsigned int i) { return is_collocation_node(i); },
@@ -201,14 +212,23 @@ namespace PeriDEAL
     template <int dim>
     std::size_t
     BondOperator<dim>::switch_critical_nodes(const VectorType &displacement,
-                                             const double      fraction)
+                                             const double      fraction,
+                                             const bool        switch_nodes)
     {
-      AssertThrow(with_failure && fraction > 0 && fraction < 1,
+      AssertThrow(fraction > 0 && fraction <= 1,
                   ExcMessage("BondOperator::switch_critical_nodes() needs a "
-                             "failure criterion (set_kinematics()) and a "
-                             "fraction in (0, 1)."));
+                             "fraction in (0, 1]."));
+      const MPI_Comm comm = nodes->get_communicator();
+      // No failure criterion (set_kinematics()): no bond can break, no
+      // node needs to switch, and none will.
+      if (!with_failure)
+        {
+          scan_margin = std::numeric_limits<double>::infinity();
+          return 0;
+        }
       copy_in(displacement);
       std::vector<char> critical(nodes->n_owned(), 0);
+      double            margin = std::numeric_limits<double>::infinity();
       // Every bond of the full stencil of each collocation node, with the
       // kinematics and the stretch of the failure test.
       for (const Chunk &chunk : collocation_chunks)
@@ -216,6 +236,7 @@ namespace PeriDEAL
           {
             const std::size_t  si = chunk.first_slot + l;
             const unsigned int i  = layout.node_of_slot(si);
+            double node_margin    = std::numeric_limits<double>::infinity();
             for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
               {
                 const std::size_t sj = si + layout.stencil_offset[k];
@@ -243,16 +264,79 @@ namespace PeriDEAL
                     critical[i] = 2;
                     break;
                   }
+                node_margin = std::min(node_margin, fraction * s0 - stretch);
               }
+            if (!critical[i])
+              margin = std::min(margin, node_margin);
           }
       std::vector<unsigned int> switched;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         if (critical[i])
           {
             switched.push_back(i);
-            missed_switches += critical[i] == 2;
+            missed_switches += switch_nodes && critical[i] == 2;
           }
-      return make_standard(switched);
+      scan_margin = Utilities::MPI::min(margin, comm);
+      const std::size_t n_critical =
+        switch_nodes ? make_standard(switched) :
+                       Utilities::MPI::sum(switched.size(), comm);
+
+      // The nodes whose displacement the bound of critical_bond_possible()
+      // watches: the remaining collocation nodes and their stencils.
+      std::vector<char> watched(nodes->size(), 0);
+      for (const Chunk &chunk : collocation_chunks)
+        for (unsigned int l = 0; l < chunk.length; ++l)
+          {
+            const std::size_t si             = chunk.first_slot + l;
+            watched[layout.node_of_slot(si)] = 1;
+            for (const std::ptrdiff_t o : layout.stencil_offset)
+              watched[layout.node_of_slot(si + o)] = 1;
+          }
+      watched_nodes.clear();
+      watched_displacement.clear();
+      const double *values = displacement.begin();
+      for (unsigned int i = 0; i < nodes->size(); ++i)
+        if (watched[i])
+          {
+            watched_nodes.push_back(i);
+            for (unsigned int c = 0; c < dim; ++c)
+              watched_displacement.push_back(
+                values[layout.vector_index[i] + c]);
+          }
+      return n_critical;
+    }
+
+
+    template <int dim>
+    bool
+    BondOperator<dim>::critical_bond_possible(
+      const VectorType &displacement) const
+    {
+      // The same margin on every process: no collocation node left
+      // anywhere means no reduction anywhere.
+      if (!(scan_margin < std::numeric_limits<double>::infinity()))
+        return false;
+      const double *values  = displacement.begin();
+      double        largest = 0;
+      for (std::size_t w = 0; w < watched_nodes.size(); ++w)
+        {
+          const unsigned int base = layout.vector_index[watched_nodes[w]];
+          double             d2   = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const double du =
+                values[base + c] - watched_displacement[w * dim + c];
+              d2 += du * du;
+            }
+          largest = std::max(largest, d2);
+        }
+      largest =
+        std::sqrt(Utilities::MPI::max(largest, nodes->get_communicator()));
+      double inv_r_max = 0;
+      for (const double inv_r : stencil.inv_r)
+        inv_r_max = std::max(inv_r_max, inv_r);
+      // A hair of slack for the rounding of the stretches themselves.
+      return 2 * largest * inv_r_max >= scan_margin * (1 - 1e-9);
     }
 
 
@@ -337,18 +421,22 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)                                              \
-  template BondOperator<dim>::CollocationReport                                \
-  BondOperator<dim>::use_collocation(const Quadrature::CollocationSettings &); \
-  template void           BondOperator<dim>::collocation_pass() const;         \
-  template Tensor<1, dim> BondOperator<dim>::collocation_force(                \
-    const std::size_t) const;                                                  \
-  template std::size_t BondOperator<dim>::make_standard(                       \
-    const std::vector<unsigned int> &);                                        \
-  template std::size_t BondOperator<dim>::switch_critical_nodes(               \
-    const VectorType &,                                                        \
-    const double);                                                             \
-  template std::size_t BondOperator<dim>::n_missed_switches() const;           \
+#define PERIDEAL_INSTANTIATE(dim)                                             \
+  template BondOperator<dim>::CollocationReport                               \
+  BondOperator<dim>::use_collocation(const Quadrature::CollocationSettings &, \
+                                     const std::vector<bool> &);              \
+  template void           BondOperator<dim>::collocation_pass() const;        \
+  template Tensor<1, dim> BondOperator<dim>::collocation_force(               \
+    const std::size_t) const;                                                 \
+  template std::size_t BondOperator<dim>::make_standard(                      \
+    const std::vector<unsigned int> &);                                       \
+  template std::size_t BondOperator<dim>::switch_critical_nodes(              \
+    const VectorType &,                                                       \
+    const double,                                                             \
+    const bool);                                                              \
+  template bool BondOperator<dim>::critical_bond_possible(const VectorType &) \
+    const;                                                                    \
+  template std::size_t BondOperator<dim>::n_missed_switches() const;          \
   template std::size_t BondOperator<dim>::n_collocation_nodes() const;
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)

@@ -16,6 +16,57 @@ namespace PeriDEAL
   {
     template <int dim>
     double
+    BondOperator<dim>::node_bond_energy(const unsigned int i) const
+    {
+      // sum_j b_ij e_ij^2 (times 1/2 in BondKernel::energy()) over the
+      // intact bonds of node i, from u_slot.
+      const bool        fail  = s0_slot.size() > 0;
+      const std::size_t si    = layout.slot[i];
+      double            bonds = 0;
+      const auto        term  = [&](const std::size_t sj,
+                            const double     *xi,
+                            const double     *n,
+                            const double      r,
+                            const double      b) {
+        const auto eta = [&](const unsigned int d) {
+          return u_slot[d][sj] - u_slot[d][si];
+        };
+        const double e = finite ?
+                                   BondKernel::extension<true, dim>(xi, n, r, eta) :
+                                   BondKernel::extension<false, dim>(xi, n, r, eta);
+        // The force passes' test, so that the energy leaves out the bonds
+        // that they leave out.
+        if (fail && !BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
+          return 0.;
+        return BondKernel::energy(b, e);
+      };
+      if (layout.use_lattice)
+        {
+          const auto visit = [&](const unsigned int k) {
+            double xi[dim], n[dim];
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                xi[d] = stencil.xi[d][k];
+                n[d]  = stencil.n[d][k];
+              }
+            bonds += term(si + layout.stencil_offset[k],
+                          xi,
+                          n,
+                          stencil.r[k],
+                          stencil.b[k]);
+          };
+          layout.for_each_stencil_index(i, visit);
+        }
+      else
+        for_each_list_bond(i, [&](const ListBond &bond, const double *xi) {
+          bonds += term(bond.neighbor_slot, xi, bond.n, bond.r, bond.b);
+        });
+      return bonds;
+    }
+
+
+    template <int dim>
+    double
     BondOperator<dim>::elastic_energy(const VectorType &displacement) const
     {
       // V_i W_i = 1/2 s_i sum_j b_ij e_ij^2 + 1/2 V_i lambda theta_i^2,
@@ -25,33 +76,13 @@ namespace PeriDEAL
       if (!state_based)
         copy_in(displacement);
       const double lambda = model->dilatation_energy_modulus();
-      const bool   fail   = s0_slot.size() > 0;
-      const auto   term   = [&](const std::size_t si,
-                            const std::size_t sj,
-                            const double     *xi,
-                            const double     *n,
-                            const double      r,
-                            const double      b) {
-        const auto eta = [&](const unsigned int d) {
-          return u_slot[d][sj] - u_slot[d][si];
-        };
-        const double e = finite ?
-                               BondKernel::extension<true, dim>(xi, n, r, eta) :
-                               BondKernel::extension<false, dim>(xi, n, r, eta);
-        // The force passes' test, so that the energy leaves out the bonds
-        // that they leave out.
-        if (fail && !BondKernel::is_intact(e, 1. / r, s0_slot[si], s0_slot[sj]))
-          return 0.;
-        return BondKernel::energy(b, e);
-      };
       const double energy = parallel::accumulate_from_subranges<double>(
         [&](const unsigned int begin, const unsigned int end) {
           double sum = 0;
           for (unsigned int i = begin; i < end; ++i)
             {
-              const std::size_t si    = layout.slot[i];
-              double            bonds = 0;
-              if (is_collocation_node(i))
+              const std::size_t si = layout.slot[i];
+              if (is_collocation_node(i) && !bond_energy_at_collocation_nodes)
                 {
                   // The collocation row is linear: its node's share of
                   // 1/2 u.K u is -1/2 u_i . F_i.
@@ -60,32 +91,7 @@ namespace PeriDEAL
                     sum -= 0.5 * u_slot[d][si] * f[d];
                   continue;
                 }
-              if (layout.use_lattice)
-                {
-                  const auto visit = [&](const unsigned int k) {
-                    double xi[dim], n[dim];
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        xi[d] = stencil.xi[d][k];
-                        n[d]  = stencil.n[d][k];
-                      }
-                    bonds += term(si,
-                                  si + layout.stencil_offset[k],
-                                  xi,
-                                  n,
-                                  stencil.r[k],
-                                  stencil.b[k]);
-                  };
-                  layout.for_each_stencil_index(i, visit);
-                }
-              else
-                for_each_list_bond(
-                  i,
-                  [&](const ListBond &bond, const double *xi) {
-                    bonds +=
-                      term(si, bond.neighbor_slot, xi, bond.n, bond.r, bond.b);
-                  });
-              sum += 0.5 * s_slot[si] * bonds +
+              sum += 0.5 * s_slot[si] * node_bond_energy(i) +
                      0.5 * (*nodes)[i].volume() * lambda * theta[i] * theta[i];
             }
           return sum;
@@ -101,5 +107,9 @@ namespace PeriDEAL
     BondOperator<2>::elastic_energy(const VectorType &) const;
     template double
     BondOperator<3>::elastic_energy(const VectorType &) const;
+    template double
+    BondOperator<2>::node_bond_energy(const unsigned int) const;
+    template double
+    BondOperator<3>::node_bond_energy(const unsigned int) const;
   } // namespace Operators
 } // namespace PeriDEAL

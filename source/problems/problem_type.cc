@@ -62,6 +62,14 @@ namespace PeriDEAL
 
     template <int dim>
     bool
+    ProblemType<dim>::supports_hybrid() const
+    {
+      return false;
+    }
+
+
+    template <int dim>
+    bool
     ProblemType<dim>::supports_collocation() const
     {
       return false;

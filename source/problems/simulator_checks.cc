@@ -36,7 +36,8 @@ namespace PeriDEAL
          Quadrature::PartialVolumeRegistry<dim>::names()},
         {"Quadrature",
          "Scheme",
-         Quadrature::QuadratureSchemeRegistry<dim>::names()},
+         Quadrature::QuadratureSchemeRegistry<dim>::names(),
+         {{"collocation", "hybrid"}}},
         {"Boundary treatment",
          "Treatment",
          Boundary::BoundaryTreatmentRegistry::names()},
@@ -80,7 +81,12 @@ namespace PeriDEAL
               const std::string selector =
                 (depth == 1 ? selection.section + "/" : std::string()) +
                 selection.selector;
-              AssertThrow(plugin == selected,
+              const bool shared =
+                std::find(selection.shared.begin(),
+                          selection.shared.end(),
+                          std::make_pair(plugin, selected)) !=
+                selection.shared.end();
+              AssertThrow(plugin == selected || shared,
                           ExcMessage(
                             "The entry '" + entry.name() + "' (line " +
                             std::to_string(entry.line) + ") belongs to '" +
@@ -108,6 +114,8 @@ namespace PeriDEAL
         for (const auto &rule : model->unused_entries())
           unused.push_back(
             {"Material model/" + model_name + "/" + rule.pattern, rule.why});
+      for (const auto &[entry, why] : quadrature_scheme->unused_entries())
+        unused.push_back({entry, why});
       if (!problem->uses_linear_solver())
         unused.push_back({"Linear solver/",
                           "the problem type '" + problem_name +

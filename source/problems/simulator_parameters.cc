@@ -151,10 +151,13 @@ namespace PeriDEAL
             Quadrature::QuadratureSchemeRegistry<dim>::pattern_string()),
           "The quadrature of the nonlocal operator at each node: 'standard' "
           "(the partial-volume weights of 'Partial volumes/Algorithm' at "
-          "every node) or 'collocation' (the WLS collocation of the "
+          "every node), 'collocation' (the WLS collocation of the "
           "hybrid-collocation paper, with the entries of the subsection "
           "'collocation', at every node whose neighbourhood is a full ball "
-          "inside the body and its layers; the others standard). "
+          "inside the body and its layers; the others standard; quasi-static "
+          "and diffusion) or 'hybrid' (collocation outside a standard region "
+          "that is fixed or grows where bonds near failure, subsection "
+          "'hybrid'; explicit dynamics). "
           "Collocation gives a non-symmetric operator: use GMRES or "
           "BiCGStab.");
         Quadrature::QuadratureSchemeRegistry<dim>::declare_parameters(prm);
@@ -349,14 +352,24 @@ namespace PeriDEAL
         linear_solver.is_matrix_free() ? "matrix-free" : "assembled";
       summary.preconditioner = linear_solver.preconditioner_name();
 
-      AssertThrow(quadrature_scheme->collocation() == nullptr ||
-                    problem->supports_collocation(),
-                  ExcInvalidInput("Quadrature/Scheme",
-                                  quadrature_scheme_name,
-                                  "the problem type '" + problem_name +
-                                    "' does not support the collocation "
-                                    "quadrature yet (only 'quasi-static' "
-                                    "does); use 'Scheme = standard'"));
+      const bool scheme_supported =
+        quadrature_scheme->hybrid() != nullptr ?
+          problem->supports_hybrid() :
+          quadrature_scheme->collocation() == nullptr ||
+            problem->supports_collocation();
+      AssertThrow(scheme_supported,
+                  ExcInvalidInput(
+                    "Quadrature/Scheme",
+                    quadrature_scheme_name,
+                    "the problem type '" + problem_name +
+                      "' does not support this quadrature scheme yet "
+                      "('collocation': quasi-static and diffusion; 'hybrid': "
+                      "explicit dynamics); use 'Scheme = standard'" +
+                      std::string(problem->supports_hybrid() ?
+                                    ", or 'hybrid' (collocation nodes that "
+                                    "switch to standard where bonds near "
+                                    "failure)" :
+                                    "")));
       problem->check_input(*this);
       check_unused_entries(prm);
     }

@@ -243,7 +243,9 @@ group_collocation() {
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = none\nend\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend')" \
     "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation rows are built for the body's own nodes"
   expect_error "$bb; $(col '' '\nset Problem type = explicit dynamics')" \
-    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support the collocation quadrature yet"
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support this quadrature scheme yet ('collocation': quasi-static and diffusion; 'hybrid': explicit dynamics); use 'Scheme = standard', or 'hybrid'"
+  expect_error "$bb; $(col '' "$gmres"); s/set Scheme = collocation/set Scheme = hybrid/" \
+    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the problem type 'quasi-static' does not support this quadrature scheme yet"
   expect_error "$bb; s/set Dimension = 2/set Dimension = 2\nsubsection Quadrature\n  subsection collocation\n    set Order = 4\n  end\nend/" \
     "The entry 'Quadrature/collocation/Order' (line 4) belongs to 'collocation', but 'Quadrature/Scheme' selects 'standard'"
 }

@@ -198,5 +198,42 @@ group_no_effect() {
     "Invalid value '1e9' for the parameter 'Material model/bond-based/Bulk modulus': this entry has no effect here: 'Elastic constants' selects Young's modulus and Poisson's ratio"
 }
 
+# The hybrid quadrature scheme (Quadrature/Scheme = hybrid): alpha outside
+# (0, 1), standard regions that hold no node, models and orders it does not
+# support, checkpoints (which do not hold the switched nodes yet), entries
+# without effect.
+group_hybrid() {
+  hy() { printf 's/set Dimension = 2/set Dimension = 2\\nsubsection Quadrature\\n  set Scheme = hybrid\\n%s\\nend/' "$1"; }
+  sed "$(hy '')" base.prm > hybrid.prm
+  expect_valid 1 hybrid.prm "the hybrid scheme" out/solution.pvd
+  rm -rf out
+  for np in 1 2; do
+    expect_error "$(hy '  subsection hybrid\n    set Critical stretch fraction = 1\n  end')" \
+      "Invalid value '1' for the parameter 'Quadrature/hybrid/Critical stretch fraction': alpha of Eq. 65 lies strictly between 0 and 1" $np
+    expect_error "$(hy '  subsection hybrid\n    set Standard boxes = 2, 2, 3, 3\n  end')" \
+      "Invalid value '2, 2, 3, 3' for the parameter 'Quadrature/hybrid/Standard boxes': box 1 holds no node centre" $np
+    expect_error "$(hy '  subsection hybrid\n    set Standard boundary ids = 2\n    set Standard layer thickness = 0.01\n  end')" \
+      "Invalid value '0.01' for the parameter 'Quadrature/hybrid/Standard layer thickness': the standard layer of boundary id 2 holds no node centre" $np
+  done
+  expect_error "$(hy '  subsection hybrid\n    set Critical stretch fraction = 0\n  end')" \
+    "Invalid value '0' for the parameter 'Quadrature/hybrid/Critical stretch fraction': alpha of Eq. 65 lies strictly between 0 and 1"
+  expect_error "$(hy '  subsection hybrid\n    set Standard boundary ids = 9\n  end')" \
+    "Invalid value '9' for the parameter 'Quadrature/hybrid/Standard boundary ids': boundary id 9 does not occur in the mesh"
+  expect_error "$(hy '  subsection collocation\n    set Order = 4\n  end')" \
+    "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
+  expect_error "$(hy '')"'; s/  set Model = bond-based/  set Model = linear peridynamic solid/; s/  subsection bond-based/  subsection linear peridynamic solid/' \
+    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the collocation form of state-based models (LPS) is derived"
+  expect_error "$(hy '')"'; s/  set End time = 1e-4/  set End time = 1e-4\n  set Checkpoint every steps = 10/' \
+    "Invalid value '10' for the parameter 'explicit dynamics/Checkpoint every steps': a checkpoint does not hold which nodes the hybrid scheme has switched"
+  expect_error "$(hy '')"'; s/  set End time = 1e-4/  set End time = 1e-4\n  set Steps per run = 10/' \
+    "Invalid value '10' for the parameter 'explicit dynamics/Steps per run': a checkpoint does not hold which nodes the hybrid scheme has switched"
+  expect_error "$(hy '  subsection hybrid\n    set Configuration = fixed\n    set Critical stretch fraction = 0.5\n  end')" \
+    "Invalid value '0.5' for the parameter 'Quadrature/hybrid/Critical stretch fraction': this entry has no effect here: with 'Configuration = fixed' no node switches"
+  expect_error "$(hy '  subsection hybrid\n    set Standard layer thickness = 2\n  end')" \
+    "Invalid value '2' for the parameter 'Quadrature/hybrid/Standard layer thickness': this entry has no effect here"
+  expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Quadrature\n  set Scheme = collocation\nend/' \
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support this quadrature scheme yet"
+}
+
 run_case_group "$group"
 finish "all bad inputs rejected with clear messages"

@@ -248,6 +248,9 @@ namespace PeriDEAL
         /// Owned nodes that fell back to the standard scheme because the
         /// cloud's cond(A) exceeds CollocationSettings::condition_limit.
         std::size_t n_ill_conditioned = 0;
+        /// Owned full-stencil nodes kept standard because the caller said
+        /// so (the fixed standard region of the hybrid scheme).
+        std::size_t n_fixed_standard = 0;
         /// The shared bulk row: collocation nodes n_c (the node itself
         /// included), monomials n_p, cond_2(A).
         unsigned int n_collocation = 0, n_monomials = 0;
@@ -276,11 +279,14 @@ namespace PeriDEAL
        * and no failure, on a uniform lattice; apply() and assemble() both
        * evaluate the rows; the operator is not symmetric. An ill-conditioned
        * bulk cloud falls back to the standard scheme everywhere or throws, as
-       * @p settings say. Collective (the report's counts are sums over the
-       * processes).
+       * @p settings say. Nodes flagged in @p standard (owned and ghost
+       * indices; empty: none) keep the standard scheme (the fixed region
+       * of the hybrid scheme). Collective (the report's counts are sums over
+       * the processes).
        */
       CollocationReport
-      use_collocation(const Quadrature::CollocationSettings &settings);
+      use_collocation(const Quadrature::CollocationSettings &settings,
+                      const std::vector<bool> &standard = std::vector<bool>());
 
       /**
        * The adaptive switch of the hybrid scheme (hybrid-collocation paper
@@ -291,12 +297,47 @@ namespace PeriDEAL
        * and the work lists are rebuilt. Each process decides for its own
        * nodes from the bond's stretch, which is the same to the bit seen
        * from either end, so every partition switches the same nodes.
-       * Needs a failure criterion (set_kinematics()). Collective; returns
-       * the number of nodes switched on all processes.
+       * Without a failure criterion (set_kinematics()) nothing switches and no
+       * scan is due again. Collective; returns the number of nodes switched on
+       * all processes. With
+       * @p switch_nodes false nothing switches: it returns the number of
+       * nodes that would (the fixed configuration, which stops then).
+       *
+       * The scan also records, for critical_bond_possible(), the smallest
+       * margin $\min(	ext{fraction}\, s_0 - s)$ over the bonds of the
+       * nodes that stay collocation nodes and the displacement of every
+       * node within their stencils.
        */
       std::size_t
       switch_critical_nodes(const VectorType &displacement,
-                            const double      fraction);
+                            const double      fraction,
+                            const bool        switch_nodes = true);
+
+      /**
+       * Whether a bond of a collocation node may have reached the fraction
+       * of switch_critical_nodes() since its last scan, under
+       * @p displacement (ghost values up to date): a stretch
+       * $s = e/r$ with $|e(\eta) - e(\eta')| \le |\eta - \eta'|$
+       * (linearised and finite kinematics alike) has changed by at most
+       * $2 D / r_{\min}$, D the largest displacement change of a node
+       * within the stencil of a collocation node, so no bond can have
+       * reached the threshold while $2 D / r_{\min}$ stays below the
+       * scan's margin. A scan at the steps where this is true switches the
+       * same nodes at the same steps as a scan at every step. O(nodes)
+       * work; collective (one reduction) unless no collocation node is
+       * left.
+       */
+      bool
+      critical_bond_possible(const VectorType &displacement) const;
+
+      /// The margin of the last scan (switch_critical_nodes()): the
+      /// smallest fraction s_0 - s over the bonds of the remaining
+      /// collocation nodes, on all processes (infinite: none).
+      double
+      switch_margin() const
+      {
+        return scan_margin;
+      }
 
       /**
        * Owned nodes whose switch came late, summed over the processes
@@ -312,6 +353,21 @@ namespace PeriDEAL
       /// Owned collocation nodes on all processes. Collective.
       std::size_t
       n_collocation_nodes() const;
+
+      /**
+       * How elastic_energy() and apply_with_energy() count a collocation
+       * node: false (default) as its share -1/2 u_i . F_i of the quadratic
+       * form 1/2 u.K u of the (linear) collocation rows, exact for static
+       * problems; true as the pair energy of its bonds (the standard
+       * scheme's), which stays positive and does not jump when the node
+       * switches: the energy that explicit dynamics balances with the
+       * hybrid scheme (doc/collocation.md Sect. 11).
+       */
+      void
+      set_collocation_energy(const bool bond_energy)
+      {
+        bond_energy_at_collocation_nodes = bond_energy;
+      }
 
       /// Whether node @p i is evaluated by collocation (use_collocation()).
       bool
@@ -453,10 +509,17 @@ namespace PeriDEAL
       };
 
       /// 1 for the nodes evaluated by collocation; empty without.
-      std::vector<char>  collocation_node;
-      std::size_t        missed_switches = 0;
-      CollocationRow     collocation_row;
-      std::vector<Chunk> collocation_chunks;
+      std::vector<char> collocation_node;
+      std::size_t       missed_switches                  = 0;
+      bool              bond_energy_at_collocation_nodes = false;
+      /// The last scan of switch_critical_nodes(): its margin, and the
+      /// nodes (owned and ghost) within the stencil of a collocation node
+      /// with their displacement then (dim values each).
+      double                    scan_margin = 0;
+      std::vector<unsigned int> watched_nodes;
+      std::vector<double>       watched_displacement;
+      CollocationRow            collocation_row;
+      std::vector<Chunk>        collocation_chunks;
 
       std::vector<ListBond> list_bonds;
       std::vector<double>   list_theta_scale; // m_0 / m_i per node
@@ -619,6 +682,11 @@ namespace PeriDEAL
       /// (collective); returns the global count.
       std::size_t
       make_standard(const std::vector<unsigned int> &switched);
+
+      /// 2 sum_j (pair energy) of the intact bonds of node @p i from u_slot
+      /// (bond_operator_energy.cc).
+      double
+      node_bond_energy(const unsigned int i) const;
 
       /// The force of collocation node @p i (slot @p si) from u_slot.
       Tensor<1, dim>

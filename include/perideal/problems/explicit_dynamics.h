@@ -99,6 +99,19 @@ namespace PeriDEAL
       void
       run(Simulator<dim> &simulator) override;
 
+      /// TimeSteppingProblem's checks, and with `Quadrature/Scheme =
+      /// hybrid` a bond-based model and no checkpoints (they do not hold
+      /// the switched nodes yet).
+      void
+      check_input(const Simulator<dim> &simulator) const override;
+
+      /// True: `Quadrature/Scheme = hybrid` (explicit_dynamics_hybrid.cc).
+      bool
+      supports_hybrid() const override
+      {
+        return true;
+      }
+
       /**
        * Mesh, DoFs, nodes and the state vectors (about 2 KB a node in 3D,
        * 1 KB in 2D) plus 8 bytes a bond: the stencil index and bond-state
@@ -126,6 +139,22 @@ namespace PeriDEAL
       /// Choose the time step from the stability bound (or check it).
       void
       choose_time_step(Simulator<dim> &simulator);
+
+      /// With the hybrid scheme: the all-standard stability bounds, the
+      /// fixed standard region, the collocation rows of the other nodes.
+      void
+      setup_hybrid(Simulator<dim> &simulator);
+
+      /// With the hybrid scheme, at the end of a step (and of
+      /// initialize()): scan the bonds of the collocation nodes when the
+      /// displacement bound says one may have reached the threshold, and
+      /// switch (adaptive) or stop (fixed).
+      void
+      update_hybrid(Simulator<dim> &simulator);
+
+      /// With the hybrid scheme: standard nodes, scans and late switches.
+      void
+      print_hybrid_summary(Simulator<dim> &simulator);
 
       /// Initial fields, prescribed values at t = 0, initial forces.
       void
@@ -263,17 +292,17 @@ namespace PeriDEAL
         load_history_entry, dirichlet_entry;
       /// Step count and output schedule; non-finite values; the energy
       /// balance.
-      TimeLoop             time_loop;
-      FiniteCheck          finite_check{" s"};
-      EnergyBalanceMonitor energy_monitor;
-      Discretization::PreCracks<dim>                  pre_cracks;
-      std::vector<BoundingBox<dim>>                   no_fail_boxes;
-      std::vector<types::boundary_id>                 no_fail_ids;
-      std::string              no_fail_ids_text, no_fail_thickness_text;
-      double                   no_fail_thickness = 1;
-      IO::CrackTipTracker<dim> crack_tip;
-      std::vector<Point<dim>>  probe_points;
-      std::string              probe_text;
+      TimeLoop                        time_loop;
+      FiniteCheck                     finite_check{" s"};
+      EnergyBalanceMonitor            energy_monitor;
+      Discretization::PreCracks<dim>  pre_cracks;
+      std::vector<BoundingBox<dim>>   no_fail_boxes;
+      std::vector<types::boundary_id> no_fail_ids;
+      std::string                     no_fail_ids_text, no_fail_thickness_text;
+      double                          no_fail_thickness = 1;
+      IO::CrackTipTracker<dim>        crack_tip;
+      std::vector<Point<dim>>         probe_points;
+      std::string                     probe_text;
       /// Per probe: the local index of the nearest node if this process
       /// owns it, else invalid.
       std::vector<unsigned int> probe_nodes;
@@ -307,7 +336,7 @@ namespace PeriDEAL
       /// The prescribed values when they do not depend on t (evaluated
       /// once; empty until then).
       std::vector<double> prescribed_values;
-      double                  time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
+      double              time = 0, dt = 0, dt_bound = 0, dt_estimate = 0;
       /// No step (64-bit step numbers: a count of steps never wraps).
       static constexpr std::uint64_t no_step =
         std::numeric_limits<std::uint64_t>::max();
@@ -316,12 +345,19 @@ namespace PeriDEAL
       double        step_elastic_energy = 0;
       std::uint64_t elastic_energy_step = no_step;
       std::uint64_t step_number = 0, n_steps = 0;
-      double       external_work = 0, load_factor = 0;
-      std::size_t  broken_bonds  = 0;
-      double       last_progress = 0, next_output_time = 0;
-      double       loop_start      = 0;
+      double        external_work = 0, load_factor = 0;
+      std::size_t   broken_bonds  = 0;
+      double        last_progress = 0, next_output_time = 0;
+      double        loop_start      = 0;
       std::uint64_t loop_start_step = 0;
-      std::vector<std::vector<double>>            energy_rows;
+      /// The hybrid scheme's settings (nullptr: another scheme), the
+      /// all-standard stability bounds (Gershgorin, power method), and the
+      /// counts: all nodes, standard nodes now, scans of the bonds.
+      const Quadrature::HybridSettings<dim> *hybrid    = nullptr;
+      double                           standard_lambda = 0, standard_power = 0;
+      std::size_t                      n_total_nodes = 0, n_standard_nodes = 0;
+      std::uint64_t                    n_switch_scans = 0;
+      std::vector<std::vector<double>> energy_rows;
       std::vector<std::pair<double, std::string>> records;
       /// The input entries that define the state (parse time), then, once
       /// checkpoint_keys() ran, the properties of the discretisation.

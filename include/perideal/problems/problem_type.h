@@ -8,6 +8,7 @@
 #include <perideal/io/output_names.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace PeriDEAL
@@ -43,6 +44,10 @@ namespace PeriDEAL
       std::string selector;
       /// The registered names it selects among.
       std::vector<std::string> names;
+      /// Plugins that also read another plugin's subsection: (subsection,
+      /// plugin) pairs, e.g. ("collocation", "hybrid"); such entries are
+      /// not refused when that plugin is selected.
+      std::vector<std::pair<std::string, std::string>> shared = {};
     };
 
     /**
@@ -126,6 +131,14 @@ namespace PeriDEAL
        */
       virtual bool
       supports_collocation() const;
+
+      /**
+       * Whether the problem type runs the hybrid scheme (`Quadrature/Scheme
+       * = hybrid`: collocation nodes beside standard ones, which bonds near
+       * failure switch to standard). Default: false.
+       */
+      virtual bool
+      supports_hybrid() const;
 
       /// Whether runs use the simulator's 'Material model' (elasticity).
       virtual bool

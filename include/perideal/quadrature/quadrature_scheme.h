@@ -1,11 +1,15 @@
 #ifndef perideal_quadrature_quadrature_scheme_h
 #define perideal_quadrature_quadrature_scheme_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/types.h>
 
 #include <perideal/base/plugin_registry.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace PeriDEAL
 {
@@ -37,6 +41,38 @@ namespace PeriDEAL
 
 
     /**
+     * The entries of `Quadrature/hybrid` (hybrid-collocation paper Sect. 4,
+     * Eq. 65; doc/collocation.md Sect. 11): which nodes are standard from
+     * the start (fixed regions), and whether bonds nearing failure make more
+     * of them standard as the run goes (adaptive).
+     */
+    template <int dim>
+    struct HybridSettings
+    {
+      /// 'Configuration = adaptive': nodes switch to the standard scheme
+      /// when one of their bonds reaches the fraction alpha of its critical
+      /// stretch; 'fixed': they never switch, and such a bond stops the run.
+      bool adaptive = true;
+      /// 'Standard boxes': nodes whose centre lies in one are standard.
+      std::vector<BoundingBox<dim>> boxes;
+      /// 'Standard boundary ids' and 'Standard layer thickness' (in
+      /// horizons): nodes closer than that to one of these boundaries are
+      /// standard.
+      std::vector<types::boundary_id> boundary_ids;
+      double                          layer_thickness = 1;
+      /// alpha of Eq. 65, in (0, 1).
+      double alpha = 0.8;
+      /// 'Critical bond detection = every step': scan the bonds of every
+      /// collocation node at every step, instead of only when the
+      /// displacement bound says a bond may have reached alpha s0 (the two
+      /// switch the same nodes at the same steps; the scan is the check).
+      bool scan_every_step = false;
+      /// The entries as given, for messages.
+      std::string boxes_text, boundary_ids_text, layer_thickness_text;
+    };
+
+
+    /**
      * The quadrature scheme of the nonlocal operators ('Quadrature/Scheme'):
      * which nodes are evaluated with the standard partial-volume quadrature
      * (the weights of 'Partial volumes/Algorithm') and which with the WLS
@@ -61,6 +97,18 @@ namespace PeriDEAL
        */
       virtual const CollocationSettings *
       collocation() const;
+
+      /// The settings of the hybrid scheme; nullptr for the others. A
+      /// hybrid scheme also has collocation() (the rows of its collocation
+      /// nodes, from the subsection 'collocation').
+      virtual const HybridSettings<dim> *
+      hybrid() const;
+
+      /// Entries of the scheme's subsections that this input sets to no
+      /// effect ('Critical stretch fraction' with 'Configuration = fixed',
+      /// say), with the reason, for Simulator::check_unused_entries().
+      virtual std::vector<std::pair<std::string, std::string>>
+      unused_entries() const;
 
       /// What the registry calls this family in error messages.
       static std::string

@@ -93,6 +93,7 @@ namespace PeriDEAL
               break;
             }
         }
+      print_hybrid_summary(simulator);
       auto &summary = simulator.get_summary();
       summary.n_bonds =
         Utilities::MPI::sum(simulator.get_neighbor_lists().n_owned_bonds(),
@@ -227,6 +228,7 @@ namespace PeriDEAL
         }
       external_work += Utilities::MPI::sum(work, simulator.get_communicator());
       check_finite(simulator);
+      update_hybrid(simulator);
     }
 
 

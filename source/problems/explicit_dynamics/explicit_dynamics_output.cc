@@ -57,6 +57,8 @@ namespace PeriDEAL
                              external_work,
                              kinetic + elastic - external_work,
                              double(broken_bonds)});
+      if (hybrid != nullptr)
+        energy_rows.back().push_back(double(n_standard_nodes));
       if (!probe_points.empty())
         {
           const auto         &nodes = simulator.get_nodes();
@@ -120,6 +122,8 @@ namespace PeriDEAL
         << ", t = " << std::scientific << std::setprecision(4) << time
         << " s, kinetic " << row[2] << ", elastic " << row[3]
         << ", external work " << row[4] << ", broken bonds " << broken_bonds;
+      if (hybrid != nullptr)
+        simulator.get_pcout() << ", standard nodes " << n_standard_nodes;
       if (crack_tip.enabled())
         simulator.get_pcout()
           << ", crack tip at " << row[row.size() - 2] << " m from the origin";
@@ -156,18 +160,23 @@ namespace PeriDEAL
           ghosted_u = owned_u;
           ghosted_v = owned_v;
           IO::NodeField damage{"damage", {}}, broken{"broken_bonds", {}},
-            rank{"mpi_rank", {}};
+            rank{"mpi_rank", {}}, scheme{"scheme", {}};
           const double this_rank = Utilities::MPI::this_mpi_process(comm);
           for (unsigned int i = 0; i < nodes.n_owned(); ++i)
             {
               damage.values.push_back(bond_state.damage(i));
               broken.values.push_back(bond_state.n_broken(i));
               rank.values.push_back(this_rank);
+              // 0 standard, 1 collocation (the hybrid scheme).
+              scheme.values.push_back(bond_operator.is_collocation_node(i));
             }
+          std::vector<IO::NodeField> fields = {damage, broken, rank};
+          if (hybrid != nullptr)
+            fields.push_back(scheme);
           const std::string record = output.write(simulator.get_dof_handler(),
                                                   nodes,
                                                   ghosted_u,
-                                                  {damage, broken, rank},
+                                                  fields,
                                                   records.size(),
                                                   {{"velocity", &ghosted_v}});
           records.emplace_back(time, record);
@@ -184,6 +193,8 @@ namespace PeriDEAL
               error = write_then_rename(path, [&](std::ostream &out) {
                 out << "time,step,kinetic_energy,elastic_energy,"
                        "external_work,energy_balance,broken_bonds";
+                if (hybrid != nullptr)
+                  out << ",standard_nodes";
                 for (unsigned int k = 0; k < probe_points.size(); ++k)
                   for (unsigned int c = 0; c < dim; ++c)
                     out << ",probe" << k << "_u"

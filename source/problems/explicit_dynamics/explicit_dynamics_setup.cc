@@ -207,6 +207,7 @@ namespace PeriDEAL
             probe_nodes[k] = node;
         }
 
+      setup_hybrid(simulator);
       const unsigned int n_stencil =
         Utilities::MPI::sum(bond_operator.n_stencil_nodes(), comm);
       const unsigned int n_runs =
@@ -295,11 +296,18 @@ namespace PeriDEAL
     void
     ExplicitDynamics<dim>::choose_time_step(Simulator<dim> &simulator)
     {
-      const double rho    = simulator.get_model().density();
-      const double lambda = bond_operator.gershgorin_eigenvalue_bound(rho);
-      const double power  = bond_operator.estimate_largest_eigenvalue(rho, 60);
-      dt_bound            = 2 / std::sqrt(lambda);
-      dt_estimate         = 2 / std::sqrt(power);
+      const double rho = simulator.get_model().density();
+      // With the hybrid scheme, the larger of the bounds with the
+      // collocation rows and with none (setup_hybrid()): any node may
+      // switch.
+      const double lambda =
+        std::max(bond_operator.gershgorin_eigenvalue_bound(rho),
+                 hybrid != nullptr ? standard_lambda : 0.);
+      const double power =
+        std::max(bond_operator.estimate_largest_eigenvalue(rho, 60),
+                 hybrid != nullptr ? standard_power : 0.);
+      dt_bound    = 2 / std::sqrt(lambda);
+      dt_estimate = 2 / std::sqrt(power);
       check_stability_bound(simulator, bond_operator, lambda);
       if (given_time_step > 0)
         AssertThrow(
@@ -371,6 +379,7 @@ namespace PeriDEAL
       // run() records the energies of the initial state next.
       compute_acceleration(simulator, true);
       check_finite(simulator);
+      update_hybrid(simulator);
     }
 
 

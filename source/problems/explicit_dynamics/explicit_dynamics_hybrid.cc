@@ -1,0 +1,234 @@
+/**
+ * @file
+ * The hybrid quadrature scheme in explicit dynamics (ExplicitDynamics,
+ * `Quadrature/Scheme = hybrid`; hybrid-collocation paper Sect. 4, Eq. 65;
+ * doc/collocation.md Sect. 11): the fixed standard region, the collocation
+ * rows of the other nodes (linearised), the scan for bonds that near
+ * failure at the end of each step where the displacement bound says one
+ * may (BondOperator::critical_bond_possible()), and what the run reports.
+ */
+
+#include <deal.II/base/mpi.h>
+
+#include <perideal/base/exceptions.h>
+#include <perideal/boundary/boundary_layers.h>
+#include <perideal/problems/explicit_dynamics.h>
+#include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace PeriDEAL
+{
+  namespace Problems
+  {
+    using internal::ExplicitDynamicsImplementation::to_string;
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::check_input(const Simulator<dim> &simulator) const
+    {
+      TimeSteppingProblem<dim>::check_input(simulator);
+      if (simulator.get_quadrature_scheme().hybrid() == nullptr)
+        return;
+      const std::string &scheme = simulator.get_quadrature_scheme_name();
+      AssertThrow(!simulator.get_model().is_state_based(),
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  scheme,
+                                  "the collocation form of state-based models "
+                                  "(LPS) is derived (doc/collocation.md Sect. "
+                                  "5) but not built yet; use a bond-based "
+                                  "model or 'Scheme = standard'"));
+      // The checkpoint does not hold which nodes have switched: a resumed
+      // run would restart them all as collocation nodes.
+      const std::string why =
+        "a checkpoint does not hold which nodes the hybrid scheme has "
+        "switched to the standard scheme yet, so a resumed run would not "
+        "continue this one; run without checkpoints, or use 'Quadrature/"
+        "Scheme = standard'";
+      const std::string section = "explicit dynamics/";
+      AssertThrow(!resume,
+                  ExcInvalidInput(section + "Resume from checkpoint",
+                                  "true",
+                                  why));
+      AssertThrow(checkpoint_every_steps == 0,
+                  ExcInvalidInput(section + "Checkpoint every steps",
+                                  std::to_string(checkpoint_every_steps),
+                                  why + " (set 0)"));
+      AssertThrow(checkpoint_minutes == 0,
+                  ExcInvalidInput(section + "Checkpoint interval",
+                                  to_string(checkpoint_minutes),
+                                  why + " (set 0)"));
+      AssertThrow(steps_per_run == 0,
+                  ExcInvalidInput(section + "Steps per run",
+                                  std::to_string(steps_per_run),
+                                  why + " (set 0)"));
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::setup_hybrid(Simulator<dim> &simulator)
+    {
+      hybrid = simulator.get_quadrature_scheme().hybrid();
+      if (hybrid == nullptr)
+        return;
+      const auto  &nodes   = simulator.get_nodes();
+      const double horizon = simulator.get_horizon();
+      const double rho     = simulator.get_model().density();
+      // The time step must stay stable whatever switches later: every row
+      // is then either a standard row or a collocation row, so the larger
+      // of the two operators' bounds covers them all (choose_time_step()).
+      standard_lambda = bond_operator.gershgorin_eigenvalue_bound(rho);
+      standard_power  = bond_operator.estimate_largest_eigenvalue(rho, 60);
+
+      // The fixed standard region: boxes and boundary layers, each of which
+      // must hold a node.
+      const std::string path = "Quadrature/hybrid/";
+      std::vector<bool> standard =
+        Discretization::nodes_in_boxes(nodes,
+                                       hybrid->boxes,
+                                       path + "Standard boxes",
+                                       hybrid->boxes_text,
+                                       "makes no node standard");
+      if (!hybrid->boundary_ids.empty())
+        {
+          Boundary::check_boundary_ids(
+            simulator.get_dof_handler().get_triangulation(),
+            hybrid->boundary_ids,
+            path + "Standard boundary ids",
+            hybrid->boundary_ids_text);
+          std::vector<unsigned int> n_in_layer;
+          const auto                layer =
+            Boundary::BoundaryLayers<dim>(
+              simulator.get_dof_handler().get_triangulation(),
+              hybrid->boundary_ids)
+              .layer_of_nodes(nodes,
+                              hybrid->layer_thickness * horizon,
+                              &n_in_layer);
+          for (unsigned int i = 0; i < nodes.size(); ++i)
+            if (layer[i] != numbers::invalid_unsigned_int)
+              standard[i] = true;
+          for (unsigned int k = 0; k < hybrid->boundary_ids.size(); ++k)
+            AssertThrow(n_in_layer[k] > 0,
+                        ExcInvalidInput(path + "Standard layer thickness",
+                                        hybrid->layer_thickness_text,
+                                        "the standard layer of boundary id " +
+                                          std::to_string(
+                                            hybrid->boundary_ids[k]) +
+                                          " holds no node centre; use a "
+                                          "layer of at least half a cell"));
+        }
+      // The energy balance counts every node's bonds (positive, and no
+      // jump when a node switches); the collocation nodes' forces do the
+      // work, so the balance holds to the difference of the quadratures.
+      bond_operator.set_collocation_energy(true);
+      const auto report = bond_operator.use_collocation(
+        *simulator.get_quadrature_scheme().collocation(),
+        standard);
+      const auto &settings = *simulator.get_quadrature_scheme().collocation();
+      // Explicit steps amplify any growing mode of the rows.
+      AssertThrow(report.symbol <= 1e-10,
+                  ExcInvalidInput(
+                    "Quadrature/collocation/Order",
+                    std::to_string(settings.order),
+                    "the bulk collocation row of this order at this m-ratio "
+                    "has growing modes (largest symbol eigenvalue " +
+                      format_number(report.symbol) +
+                      " of the most negative; doc/collocation.md Sect. 7), "
+                      "which explicit time stepping amplifies at any step; "
+                      "use 'Order = 2'"));
+      n_total_nodes    = simulator.get_summary().n_nodes;
+      n_standard_nodes = n_total_nodes - report.n_collocation_nodes;
+      n_switch_scans   = 0;
+      std::ostringstream line;
+      line << "quadrature '" << simulator.get_quadrature_scheme_name()
+           << "': order " << settings.order << ", " << report.n_collocation
+           << " collocation nodes (" << report.n_monomials
+           << " monomials), cond(A) " << std::setprecision(2) << std::scientific
+           << report.condition << std::defaultfloat << "; "
+           << report.n_collocation_nodes << " nodes by collocation, "
+           << report.n_fixed_standard << " standard (fixed region), "
+           << n_standard_nodes - report.n_fixed_standard
+           << " standard (ball cut by the surface or a pre-crack"
+           << (report.n_ill_conditioned > 0 ? ", or ill-conditioned cloud" : "")
+           << "); "
+           << (hybrid->adaptive ?
+                 "adaptive, critical stretch fraction " +
+                   to_string(hybrid->alpha) + ", scan " +
+                   (hybrid->scan_every_step ? "every step" :
+                                              "by the displacement bound") :
+                 std::string("fixed"));
+      simulator.get_pcout() << "           " << line.str() << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::update_hybrid(Simulator<dim> &simulator)
+    {
+      if (hybrid == nullptr)
+        return;
+      TimerOutput::Scope scope(simulator.get_timer(), "hybrid switch");
+      // The count for the energy row and the progress line (the nodes
+      // that commit_broken_bonds() switched included).
+      if (records_energies())
+        n_standard_nodes = n_total_nodes - bond_operator.n_collocation_nodes();
+      // Fixed: a bond of a collocation node that broke from its standard
+      // end this step (commit_broken_bonds() then switched the node) means
+      // the crack has left the region, as a scan would find.
+      const std::size_t broken_at_collocation =
+        hybrid->adaptive ? 0 : bond_operator.n_missed_switches();
+      if (broken_at_collocation == 0 && !hybrid->scan_every_step &&
+          !bond_operator.critical_bond_possible(u))
+        return;
+      ++n_switch_scans;
+      const double      fraction = hybrid->adaptive ? hybrid->alpha : 1.;
+      const std::size_t n =
+        bond_operator.switch_critical_nodes(u, fraction, hybrid->adaptive);
+      if (hybrid->adaptive)
+        n_standard_nodes = n_total_nodes - bond_operator.n_collocation_nodes();
+      else
+        AssertThrow(n + broken_at_collocation == 0,
+                    ExcMessage(
+                      "At step " + std::to_string(step_number) +
+                      " (t = " + to_string(time) + " s) " +
+                      std::to_string(n + broken_at_collocation) +
+                      " collocation node(s) have a bond at its critical "
+                      "stretch: the crack has left the fixed standard region "
+                      "of 'Quadrature/hybrid' (collocation nodes cannot "
+                      "break bonds). Enlarge 'Standard boxes', or set "
+                      "'Configuration = adaptive'. The output written before "
+                      "is complete."));
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::print_hybrid_summary(Simulator<dim> &simulator)
+    {
+      if (hybrid == nullptr)
+        return;
+      const std::size_t missed = bond_operator.n_missed_switches();
+      simulator.get_pcout()
+        << "           hybrid: " << n_standard_nodes << " of " << n_total_nodes
+        << " nodes standard at the end (" << std::setprecision(3)
+        << 100. * n_standard_nodes / std::max<std::size_t>(n_total_nodes, 1)
+        << " %), " << n_switch_scans << " bond scans in "
+        << step_number - loop_start_step << " steps, " << missed
+        << " late switches (a bond of a collocation node broke or was past "
+           "its critical stretch when found)"
+        << std::defaultfloat << std::endl;
+    }
+
+
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, setup_hybrid, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, update_hybrid, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, print_hybrid_summary, )
+    template void
+    ExplicitDynamics<2>::check_input(const Simulator<2> &) const;
+    template void
+    ExplicitDynamics<3>::check_input(const Simulator<3> &) const;
+  } // namespace Problems
+} // namespace PeriDEAL
