@@ -120,6 +120,7 @@ namespace PeriDEAL
       collocation_row = CollocationRow();
       missed_switches = 0;
       scan_margin     = 0;
+      watched_valid   = false;
       watched_nodes.clear();
       watched_displacement.clear();
       if (!well_conditioned)
@@ -228,47 +229,70 @@ namespace PeriDEAL
         }
       copy_in(displacement);
       std::vector<char> critical(nodes->n_owned(), 0);
-      double            margin = std::numeric_limits<double>::infinity();
+      // The margin of each chunk (their minimum does not depend on what the
+      // threads did: min is exact and order-independent).
+      std::vector<double> chunk_margin(collocation_chunks.size(),
+                                       std::numeric_limits<double>::infinity());
       // Every bond of the full stencil of each collocation node, with the
-      // kinematics and the stretch of the failure test.
-      for (const Chunk &chunk : collocation_chunks)
-        for (unsigned int l = 0; l < chunk.length; ++l)
-          {
-            const std::size_t  si = chunk.first_slot + l;
-            const unsigned int i  = layout.node_of_slot(si);
-            double node_margin    = std::numeric_limits<double>::infinity();
-            for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
-              {
-                const std::size_t sj = si + layout.stencil_offset[k];
-                double            xi[dim], n[dim];
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    xi[d] = stencil.xi[d][k];
-                    n[d]  = stencil.n[d][k];
-                  }
-                const auto eta = [&](const unsigned int d) {
-                  return u_slot[d][sj] - u_slot[d][si];
-                };
-                const double e =
-                  finite ?
-                    BondKernel::extension<true, dim>(xi, n, stencil.r[k], eta) :
-                    BondKernel::extension<false, dim>(xi, n, stencil.r[k], eta);
-                const double s0      = std::min(s0_slot[si], s0_slot[sj]);
-                const double stretch = e * stencil.inv_r[k];
-                if (stretch >= fraction * s0)
-                  critical[i] = 1;
-                // Already past the critical stretch: the switch comes late
-                // (the bond would have broken in the standard scheme).
-                if (stretch >= s0)
-                  {
-                    critical[i] = 2;
-                    break;
-                  }
-                node_margin = std::min(node_margin, fraction * s0 - stretch);
-              }
-            if (!critical[i])
-              margin = std::min(margin, node_margin);
-          }
+      // kinematics and the stretch of the failure test; threaded over the
+      // chunks (each node belongs to one chunk).
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        collocation_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const Chunk &chunk = collocation_chunks[c];
+              for (unsigned int l = 0; l < chunk.length; ++l)
+                {
+                  const std::size_t  si = chunk.first_slot + l;
+                  const unsigned int i  = layout.node_of_slot(si);
+                  double node_margin = std::numeric_limits<double>::infinity();
+                  for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
+                    {
+                      const std::size_t sj = si + layout.stencil_offset[k];
+                      double            xi[dim], n[dim];
+                      for (unsigned int d = 0; d < dim; ++d)
+                        {
+                          xi[d] = stencil.xi[d][k];
+                          n[d]  = stencil.n[d][k];
+                        }
+                      const auto eta = [&](const unsigned int d) {
+                        return u_slot[d][sj] - u_slot[d][si];
+                      };
+                      const double e =
+                        finite ? BondKernel::extension<true, dim>(xi,
+                                                                  n,
+                                                                  stencil.r[k],
+                                                                  eta) :
+                                 BondKernel::extension<false, dim>(xi,
+                                                                   n,
+                                                                   stencil.r[k],
+                                                                   eta);
+                      const double s0      = std::min(s0_slot[si], s0_slot[sj]);
+                      const double stretch = e * stencil.inv_r[k];
+                      if (stretch >= fraction * s0)
+                        critical[i] = 1;
+                      // Already past the critical stretch: the switch comes
+                      // late (the bond would have broken in the standard
+                      // scheme).
+                      if (stretch >= s0)
+                        {
+                          critical[i] = 2;
+                          break;
+                        }
+                      node_margin =
+                        std::min(node_margin, fraction * s0 - stretch);
+                    }
+                  if (!critical[i])
+                    chunk_margin[c] = std::min(chunk_margin[c], node_margin);
+                }
+            }
+        },
+        LoopLayout<dim>::chunk_grain);
+      double margin = std::numeric_limits<double>::infinity();
+      for (const double m : chunk_margin)
+        margin = std::min(margin, m);
       std::vector<unsigned int> switched;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         if (critical[i])
@@ -282,27 +306,32 @@ namespace PeriDEAL
                        Utilities::MPI::sum(switched.size(), comm);
 
       // The nodes whose displacement the bound of critical_bond_possible()
-      // watches: the remaining collocation nodes and their stencils.
-      std::vector<char> watched(nodes->size(), 0);
-      for (const Chunk &chunk : collocation_chunks)
-        for (unsigned int l = 0; l < chunk.length; ++l)
-          {
-            const std::size_t si             = chunk.first_slot + l;
-            watched[layout.node_of_slot(si)] = 1;
-            for (const std::ptrdiff_t o : layout.stencil_offset)
-              watched[layout.node_of_slot(si + o)] = 1;
-          }
-      watched_nodes.clear();
-      watched_displacement.clear();
+      // watches: the remaining collocation nodes and their stencils (found
+      // again only when nodes switched, here or on another process), and
+      // their displacement now.
+      if (n_critical > 0 || !watched_valid)
+        {
+          std::vector<char> watched(nodes->size(), 0);
+          for (const Chunk &chunk : collocation_chunks)
+            for (unsigned int l = 0; l < chunk.length; ++l)
+              {
+                const std::size_t si             = chunk.first_slot + l;
+                watched[layout.node_of_slot(si)] = 1;
+                for (const std::ptrdiff_t o : layout.stencil_offset)
+                  watched[layout.node_of_slot(si + o)] = 1;
+              }
+          watched_nodes.clear();
+          for (unsigned int i = 0; i < nodes->size(); ++i)
+            if (watched[i])
+              watched_nodes.push_back(i);
+          watched_valid = true;
+        }
       const double *values = displacement.begin();
-      for (unsigned int i = 0; i < nodes->size(); ++i)
-        if (watched[i])
-          {
-            watched_nodes.push_back(i);
-            for (unsigned int c = 0; c < dim; ++c)
-              watched_displacement.push_back(
-                values[layout.vector_index[i] + c]);
-          }
+      watched_displacement.resize(watched_nodes.size() * dim);
+      for (std::size_t w = 0; w < watched_nodes.size(); ++w)
+        for (unsigned int c = 0; c < dim; ++c)
+          watched_displacement[w * dim + c] =
+            values[layout.vector_index[watched_nodes[w]] + c];
       return n_critical;
     }
 

@@ -515,7 +515,8 @@ namespace PeriDEAL
       /// The last scan of switch_critical_nodes(): its margin, and the
       /// nodes (owned and ghost) within the stencil of a collocation node
       /// with their displacement then (dim values each).
-      double                    scan_margin = 0;
+      double                    scan_margin   = 0;
+      bool                      watched_valid = false;
       std::vector<unsigned int> watched_nodes;
       std::vector<double>       watched_displacement;
       CollocationRow            collocation_row;
