@@ -1,3 +1,4 @@
+#include <perideal/base/exceptions.h>
 #include <perideal/models/model.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
@@ -57,6 +58,22 @@ namespace PeriDEAL
     ProblemType<dim>::uses_linear_solver() const
     {
       return true;
+    }
+
+
+    template <int dim>
+    void
+    ProblemType<dim>::check_collocation_model(const Simulator<dim> &simulator)
+    {
+      if (simulator.get_quadrature_scheme().collocation() == nullptr)
+        return;
+      AssertThrow(!simulator.get_model().is_state_based(),
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  simulator.get_quadrature_scheme_name(),
+                                  "the collocation form of state-based models "
+                                  "(LPS) is derived (doc/collocation.md Sect. "
+                                  "5) but not built yet; use a bond-based "
+                                  "model or 'Scheme = standard'"));
     }
 
 

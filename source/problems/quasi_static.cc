@@ -97,13 +97,7 @@ namespace PeriDEAL
                                     "' adds others; use 'Boundary "
                                     "treatment/Treatment = none' or 'Scheme "
                                     "= standard'"));
-      AssertThrow(!simulator.get_model().is_state_based(),
-                  ExcInvalidInput("Quadrature/Scheme",
-                                  scheme,
-                                  "the collocation form of state-based models "
-                                  "(LPS) is derived (doc/collocation.md Sect. "
-                                  "5) but not built yet; use a bond-based "
-                                  "model or 'Scheme = standard'"));
+      this->check_collocation_model(simulator);
       const auto &solver = simulator.get_linear_solver();
       solver.check_form(solver.is_matrix_free() ?
                           Solvers::OperatorForm::matrix_free :

@@ -140,6 +140,14 @@ namespace PeriDEAL
       virtual bool
       supports_hybrid() const;
 
+      /**
+       * Refuse, naming `Quadrature/Scheme`, a state-based material model
+       * with a scheme that has collocation nodes (their LPS rows are not
+       * built yet); nothing for the standard scheme. For check_input().
+       */
+      static void
+      check_collocation_model(const Simulator<dim> &simulator);
+
       /// Whether runs use the simulator's 'Material model' (elasticity).
       virtual bool
       uses_material_model() const;

@@ -11,7 +11,6 @@
 #include <deal.II/base/mpi.h>
 
 #include <perideal/base/exceptions.h>
-#include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
 #include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
 
@@ -32,14 +31,7 @@ namespace PeriDEAL
       TimeSteppingProblem<dim>::check_input(simulator);
       if (simulator.get_quadrature_scheme().hybrid() == nullptr)
         return;
-      const std::string &scheme = simulator.get_quadrature_scheme_name();
-      AssertThrow(!simulator.get_model().is_state_based(),
-                  ExcInvalidInput("Quadrature/Scheme",
-                                  scheme,
-                                  "the collocation form of state-based models "
-                                  "(LPS) is derived (doc/collocation.md Sect. "
-                                  "5) but not built yet; use a bond-based "
-                                  "model or 'Scheme = standard'"));
+      this->check_collocation_model(simulator);
       // The checkpoint does not hold which nodes have switched: a resumed
       // run would restart them all as collocation nodes.
       const std::string why =
@@ -74,9 +66,7 @@ namespace PeriDEAL
       hybrid = simulator.get_quadrature_scheme().hybrid();
       if (hybrid == nullptr)
         return;
-      const auto  &nodes   = simulator.get_nodes();
-      const double horizon = simulator.get_horizon();
-      const double rho     = simulator.get_model().density();
+      const double rho = simulator.get_model().density();
       // The time step must stay stable whatever switches later: every row
       // is then either a standard row or a collocation row, so the larger
       // of the two operators' bounds covers them all (choose_time_step()).
@@ -86,40 +76,21 @@ namespace PeriDEAL
       // The fixed standard region: boxes and boundary layers, each of which
       // must hold a node.
       const std::string path = "Quadrature/hybrid/";
-      std::vector<bool> standard =
-        Discretization::nodes_in_boxes(nodes,
-                                       hybrid->boxes,
-                                       path + "Standard boxes",
-                                       hybrid->boxes_text,
-                                       "makes no node standard");
-      if (!hybrid->boundary_ids.empty())
-        {
-          Boundary::check_boundary_ids(
-            simulator.get_dof_handler().get_triangulation(),
+      const auto        standard =
+        internal::ExplicitDynamicsImplementation::nodes_in_region(
+          simulator,
+          internal::ExplicitDynamicsImplementation::NodeRegion<dim>{
+            hybrid->boxes,
+            path + "Standard boxes",
+            hybrid->boxes_text,
+            "makes no node standard",
             hybrid->boundary_ids,
             path + "Standard boundary ids",
-            hybrid->boundary_ids_text);
-          std::vector<unsigned int> n_in_layer;
-          const auto                layer =
-            Boundary::BoundaryLayers<dim>(
-              simulator.get_dof_handler().get_triangulation(),
-              hybrid->boundary_ids)
-              .layer_of_nodes(nodes,
-                              hybrid->layer_thickness * horizon,
-                              &n_in_layer);
-          for (unsigned int i = 0; i < nodes.size(); ++i)
-            if (layer[i] != numbers::invalid_unsigned_int)
-              standard[i] = true;
-          for (unsigned int k = 0; k < hybrid->boundary_ids.size(); ++k)
-            AssertThrow(n_in_layer[k] > 0,
-                        ExcInvalidInput(path + "Standard layer thickness",
-                                        hybrid->layer_thickness_text,
-                                        "the standard layer of boundary id " +
-                                          std::to_string(
-                                            hybrid->boundary_ids[k]) +
-                                          " holds no node centre; use a "
-                                          "layer of at least half a cell"));
-        }
+            hybrid->boundary_ids_text,
+            hybrid->layer_thickness,
+            path + "Standard layer thickness",
+            hybrid->layer_thickness_text,
+            "standard layer"});
       // The energy balance counts every node's bonds (positive, and no
       // jump when a node switches); the collocation nodes' forces do the
       // work, so the balance holds to the difference of the quadratures.
