@@ -231,61 +231,85 @@ namespace PeriDEAL
       std::vector<char> critical(nodes->n_owned(), 0);
       // The margin of each chunk (their minimum does not depend on what the
       // threads did: min is exact and order-independent).
-      std::vector<double> chunk_margin(collocation_chunks.size(),
-                                       std::numeric_limits<double>::infinity());
+      std::vector<double> chunk_margin(
+        collocation_chunks.size(), std::numeric_limits<double>::infinity());
       // Every bond of the full stencil of each collocation node, with the
-      // kinematics and the stretch of the failure test; threaded over the
-      // chunks (each node belongs to one chunk).
+      // kinematics and the stretch of the failure test, vectorised over the
+      // slots of a chunk as the force passes are and threaded over the
+      // chunks. Per lane the largest s - fraction s0 and s - s0 over the
+      // bonds: a - b >= 0 exactly when a >= b, and the margin
+      // fraction s0 - s is the negative of the first.
       parallel::apply_to_subranges(
         std::size_t(0),
         collocation_chunks.size(),
         [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double over_fraction[chunk_size], over_critical[chunk_size];
           for (std::size_t c = begin; c < end; ++c)
             {
-              const Chunk &chunk = collocation_chunks[c];
-              for (unsigned int l = 0; l < chunk.length; ++l)
+              const std::size_t  first = collocation_chunks[c].first_slot;
+              const unsigned int len   = collocation_chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
                 {
-                  const std::size_t  si = chunk.first_slot + l;
-                  const unsigned int i  = layout.node_of_slot(si);
-                  double node_margin = std::numeric_limits<double>::infinity();
-                  for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
+                  over_fraction[l] = -std::numeric_limits<double>::infinity();
+                  over_critical[l] = -std::numeric_limits<double>::infinity();
+                }
+              for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
+                {
+                  const std::ptrdiff_t o = layout.stencil_offset[k];
+                  double               xi[dim], n[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
                     {
-                      const std::size_t sj = si + layout.stencil_offset[k];
-                      double            xi[dim], n[dim];
-                      for (unsigned int d = 0; d < dim; ++d)
-                        {
-                          xi[d] = stencil.xi[d][k];
-                          n[d]  = stencil.n[d][k];
-                        }
-                      const auto eta = [&](const unsigned int d) {
-                        return u_slot[d][sj] - u_slot[d][si];
-                      };
-                      const double e =
-                        finite ? BondKernel::extension<true, dim>(xi,
-                                                                  n,
-                                                                  stencil.r[k],
-                                                                  eta) :
-                                 BondKernel::extension<false, dim>(xi,
-                                                                   n,
-                                                                   stencil.r[k],
-                                                                   eta);
-                      const double s0      = std::min(s0_slot[si], s0_slot[sj]);
-                      const double stretch = e * stencil.inv_r[k];
-                      if (stretch >= fraction * s0)
-                        critical[i] = 1;
-                      // Already past the critical stretch: the switch comes
-                      // late (the bond would have broken in the standard
-                      // scheme).
-                      if (stretch >= s0)
-                        {
-                          critical[i] = 2;
-                          break;
-                        }
-                      node_margin =
-                        std::min(node_margin, fraction * s0 - stretch);
+                      xi[d] = stencil.xi[d][k];
+                      n[d]  = stencil.n[d][k];
                     }
-                  if (!critical[i])
-                    chunk_margin[c] = std::min(chunk_margin[c], node_margin);
+                  const double  r     = stencil.r[k];
+                  const double  inv_r = stencil.inv_r[k];
+                  const double *ui[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    ui[d] = u_slot[d].data() + first;
+                  const double *s0i = s0_slot.data() + first;
+                  // One loop per kinematics, so that the lane body has no
+                  // branch.
+                  const auto lanes = [&](auto finite_kinematics) {
+                    constexpr bool with_finite =
+                      decltype(finite_kinematics)::value;
+#pragma omp simd
+                    for (unsigned int l = 0; l < len; ++l)
+                      {
+                        const auto eta = [&](const unsigned int d) {
+                          return ui[d][l + o] - ui[d][l];
+                        };
+                        const double e =
+                          BondKernel::extension<with_finite, dim>(xi,
+                                                                  n,
+                                                                  r,
+                                                                  eta);
+                        const double s0 = std::min(s0i[l], s0i[l + o]);
+                        const double stretch = e * inv_r;
+                        over_fraction[l] =
+                          std::max(over_fraction[l], stretch - fraction * s0);
+                        over_critical[l] =
+                          std::max(over_critical[l], stretch - s0);
+                      }
+                  };
+                  if (finite)
+                    lanes(std::true_type());
+                  else
+                    lanes(std::false_type());
+                }
+              for (unsigned int l = 0; l < len; ++l)
+                {
+                  const unsigned int i = layout.node_of_slot(first + l);
+                  if (over_critical[l] >= 0)
+                    // Already past the critical stretch: the switch comes
+                    // late (the bond would have broken in the standard
+                    // scheme).
+                    critical[i] = 2;
+                  else if (over_fraction[l] >= 0)
+                    critical[i] = 1;
+                  else
+                    chunk_margin[c] =
+                      std::min(chunk_margin[c], -over_fraction[l]);
                 }
             }
         },
@@ -311,19 +335,23 @@ namespace PeriDEAL
       // their displacement now.
       if (n_critical > 0 || !watched_valid)
         {
-          std::vector<char> watched(nodes->size(), 0);
+          // Marked in slot space (array writes along each offset), then
+          // one node lookup per marked slot: the rebuild follows every step
+          // in which nodes switch.
+          std::vector<char> watched(layout.n_slots, 0);
           for (const Chunk &chunk : collocation_chunks)
-            for (unsigned int l = 0; l < chunk.length; ++l)
-              {
-                const std::size_t si             = chunk.first_slot + l;
-                watched[layout.node_of_slot(si)] = 1;
-                for (const std::ptrdiff_t o : layout.stencil_offset)
-                  watched[layout.node_of_slot(si + o)] = 1;
-              }
+            {
+              char *first = watched.data() + chunk.first_slot;
+              for (unsigned int l = 0; l < chunk.length; ++l)
+                first[l] = 1;
+              for (const std::ptrdiff_t o : layout.stencil_offset)
+                for (unsigned int l = 0; l < chunk.length; ++l)
+                  first[l + o] = 1;
+            }
           watched_nodes.clear();
-          for (unsigned int i = 0; i < nodes->size(); ++i)
-            if (watched[i])
-              watched_nodes.push_back(i);
+          for (std::size_t s = 0; s < layout.n_slots; ++s)
+            if (watched[s])
+              watched_nodes.push_back(layout.node_of_slot(s));
           watched_valid = true;
         }
       const double *values = displacement.begin();
