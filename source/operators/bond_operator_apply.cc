@@ -232,7 +232,24 @@ namespace PeriDEAL
       // V_i W_i = 1/2 s_i sum_j b_ij e_ij^2 + 1/2 V_i lambda theta_i^2 as
       // in elastic_energy(), summed in node order (the same on every run).
       const double lambda = model->dilatation_energy_modulus();
-      double       energy = 0;
+      // The pair energies of the collocation nodes' bonds
+      // (set_collocation_energy()), node by node on the threads; summed
+      // below in node order.
+      std::vector<double> bond_energy;
+      if (bond_energy_at_collocation_nodes && !collocation_chunks.empty())
+        {
+          bond_energy.assign(nodes->n_owned(), 0.);
+          parallel::apply_to_subranges(
+            0u,
+            nodes->n_owned(),
+            [&](const unsigned int begin, const unsigned int end) {
+              for (unsigned int i = begin; i < end; ++i)
+                if (is_collocation_node(i))
+                  bond_energy[i] = node_bond_energy(i);
+            },
+            256);
+        }
+      double energy = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
           const std::size_t si = layout.slot[i];
@@ -240,7 +257,7 @@ namespace PeriDEAL
             {
               if (bond_energy_at_collocation_nodes)
                 // The pair energy of its bonds (set_collocation_energy()).
-                energy += 0.5 * s_slot[si] * node_bond_energy(i);
+                energy += 0.5 * s_slot[si] * bond_energy[i];
               else
                 // The linear collocation row: -1/2 u_i . F_i.
                 for (unsigned int d = 0; d < dim; ++d)

@@ -1,7 +1,8 @@
 // BondOperator: the collocation quadrature of the nodes with a full
 // neighbourhood (doc/collocation.md Sects. 6 and 11): the shared bulk row
 // from one WLS fit on the lattice, its pass over chunks of consecutive
-// slots, and its force at one node.
+// slots, and its force at one node. The adaptive switch of the hybrid
+// scheme is in bond_operator_switch.cc.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parallel.h>
@@ -120,9 +121,7 @@ namespace PeriDEAL
       collocation_row = CollocationRow();
       missed_switches = 0;
       scan_margin     = 0;
-      watched_valid   = false;
-      watched_nodes.clear();
-      watched_displacement.clear();
+      tracking        = SwitchTracking();
       if (!well_conditioned)
         {
           report.n_ill_conditioned = n_full;
@@ -187,185 +186,8 @@ namespace PeriDEAL
       layout.make_chunks(
         [&](const unsigned int i) { return is_collocation_node(i); },
         collocation_chunks);
+      setup_switch_tracking();
       return report;
-    }
-
-
-    template <int dim>
-    std::size_t
-    BondOperator<dim>::make_standard(const std::vector<unsigned int> &switched)
-    {
-      for (const unsigned int i : switched)
-        collocation_node[i] = 0;
-      const std::size_t n_switched =
-        Utilities::MPI::sum(switched.size(), nodes->get_communicator());
-      if (n_switched > 0)
-        {
-          build_work_lists();
-          layout.make_chunks(
-            [&](const unsigned int i) { return is_collocation_node(i); },
-            collocation_chunks);
-        }
-      return n_switched;
-    }
-
-
-    template <int dim>
-    std::size_t
-    BondOperator<dim>::switch_critical_nodes(const VectorType &displacement,
-                                             const double      fraction,
-                                             const bool        switch_nodes)
-    {
-      AssertThrow(fraction > 0 && fraction <= 1,
-                  ExcMessage("BondOperator::switch_critical_nodes() needs a "
-                             "fraction in (0, 1]."));
-      const MPI_Comm comm = nodes->get_communicator();
-      // No failure criterion (set_kinematics()): no bond can break, no
-      // node needs to switch, and none will.
-      if (!with_failure)
-        {
-          scan_margin = std::numeric_limits<double>::infinity();
-          return 0;
-        }
-      copy_in(displacement);
-      std::vector<char> critical(nodes->n_owned(), 0);
-      // The margin of each chunk (their minimum does not depend on what the
-      // threads did: min is exact and order-independent).
-      std::vector<double> chunk_margin(collocation_chunks.size(),
-                                       std::numeric_limits<double>::infinity());
-      // Every bond of the full stencil of each collocation node, with the
-      // kinematics and the stretch of the failure test; threaded over the
-      // chunks (each node belongs to one chunk).
-      parallel::apply_to_subranges(
-        std::size_t(0),
-        collocation_chunks.size(),
-        [&](const std::size_t begin, const std::size_t end) {
-          for (std::size_t c = begin; c < end; ++c)
-            {
-              const Chunk &chunk = collocation_chunks[c];
-              for (unsigned int l = 0; l < chunk.length; ++l)
-                {
-                  const std::size_t  si = chunk.first_slot + l;
-                  const unsigned int i  = layout.node_of_slot(si);
-                  double node_margin = std::numeric_limits<double>::infinity();
-                  for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
-                    {
-                      const std::size_t sj = si + layout.stencil_offset[k];
-                      double            xi[dim], n[dim];
-                      for (unsigned int d = 0; d < dim; ++d)
-                        {
-                          xi[d] = stencil.xi[d][k];
-                          n[d]  = stencil.n[d][k];
-                        }
-                      const auto eta = [&](const unsigned int d) {
-                        return u_slot[d][sj] - u_slot[d][si];
-                      };
-                      const double e =
-                        finite ? BondKernel::extension<true, dim>(xi,
-                                                                  n,
-                                                                  stencil.r[k],
-                                                                  eta) :
-                                 BondKernel::extension<false, dim>(xi,
-                                                                   n,
-                                                                   stencil.r[k],
-                                                                   eta);
-                      const double s0      = std::min(s0_slot[si], s0_slot[sj]);
-                      const double stretch = e * stencil.inv_r[k];
-                      if (stretch >= fraction * s0)
-                        critical[i] = 1;
-                      // Already past the critical stretch: the switch comes
-                      // late (the bond would have broken in the standard
-                      // scheme).
-                      if (stretch >= s0)
-                        {
-                          critical[i] = 2;
-                          break;
-                        }
-                      node_margin =
-                        std::min(node_margin, fraction * s0 - stretch);
-                    }
-                  if (!critical[i])
-                    chunk_margin[c] = std::min(chunk_margin[c], node_margin);
-                }
-            }
-        },
-        LoopLayout<dim>::chunk_grain);
-      double margin = std::numeric_limits<double>::infinity();
-      for (const double m : chunk_margin)
-        margin = std::min(margin, m);
-      std::vector<unsigned int> switched;
-      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-        if (critical[i])
-          {
-            switched.push_back(i);
-            missed_switches += switch_nodes && critical[i] == 2;
-          }
-      scan_margin = Utilities::MPI::min(margin, comm);
-      const std::size_t n_critical =
-        switch_nodes ? make_standard(switched) :
-                       Utilities::MPI::sum(switched.size(), comm);
-
-      // The nodes whose displacement the bound of critical_bond_possible()
-      // watches: the remaining collocation nodes and their stencils (found
-      // again only when nodes switched, here or on another process), and
-      // their displacement now.
-      if (n_critical > 0 || !watched_valid)
-        {
-          std::vector<char> watched(nodes->size(), 0);
-          for (const Chunk &chunk : collocation_chunks)
-            for (unsigned int l = 0; l < chunk.length; ++l)
-              {
-                const std::size_t si             = chunk.first_slot + l;
-                watched[layout.node_of_slot(si)] = 1;
-                for (const std::ptrdiff_t o : layout.stencil_offset)
-                  watched[layout.node_of_slot(si + o)] = 1;
-              }
-          watched_nodes.clear();
-          for (unsigned int i = 0; i < nodes->size(); ++i)
-            if (watched[i])
-              watched_nodes.push_back(i);
-          watched_valid = true;
-        }
-      const double *values = displacement.begin();
-      watched_displacement.resize(watched_nodes.size() * dim);
-      for (std::size_t w = 0; w < watched_nodes.size(); ++w)
-        for (unsigned int c = 0; c < dim; ++c)
-          watched_displacement[w * dim + c] =
-            values[layout.vector_index[watched_nodes[w]] + c];
-      return n_critical;
-    }
-
-
-    template <int dim>
-    bool
-    BondOperator<dim>::critical_bond_possible(
-      const VectorType &displacement) const
-    {
-      // The same margin on every process: no collocation node left
-      // anywhere means no reduction anywhere.
-      if (!(scan_margin < std::numeric_limits<double>::infinity()))
-        return false;
-      const double *values  = displacement.begin();
-      double        largest = 0;
-      for (std::size_t w = 0; w < watched_nodes.size(); ++w)
-        {
-          const unsigned int base = layout.vector_index[watched_nodes[w]];
-          double             d2   = 0;
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              const double du =
-                values[base + c] - watched_displacement[w * dim + c];
-              d2 += du * du;
-            }
-          largest = std::max(largest, d2);
-        }
-      largest =
-        std::sqrt(Utilities::MPI::max(largest, nodes->get_communicator()));
-      double inv_r_max = 0;
-      for (const double inv_r : stencil.inv_r)
-        inv_r_max = std::max(inv_r_max, inv_r);
-      // A hair of slack for the rounding of the stretches themselves.
-      return 2 * largest * inv_r_max >= scan_margin * (1 - 1e-9);
     }
 
 
@@ -457,14 +279,6 @@ namespace PeriDEAL
   template void           BondOperator<dim>::collocation_pass() const;        \
   template Tensor<1, dim> BondOperator<dim>::collocation_force(               \
     const std::size_t) const;                                                 \
-  template std::size_t BondOperator<dim>::make_standard(                      \
-    const std::vector<unsigned int> &);                                       \
-  template std::size_t BondOperator<dim>::switch_critical_nodes(              \
-    const VectorType &,                                                       \
-    const double,                                                             \
-    const bool);                                                              \
-  template bool BondOperator<dim>::critical_bond_possible(const VectorType &) \
-    const;                                                                    \
   template std::size_t BondOperator<dim>::n_missed_switches() const;          \
   template std::size_t BondOperator<dim>::n_collocation_nodes() const;
     PERIDEAL_INSTANTIATE(2)

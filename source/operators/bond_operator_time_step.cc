@@ -128,7 +128,8 @@ namespace PeriDEAL
       const unsigned int n_iterations) const
     {
       // Power method on M^{-1} K (K x = -F(x) of the linearised kernel of
-      // the intact bonds, whatever the kinematics of apply()), with the
+      // the intact bonds, whatever the kinematics of apply(), and of the
+      // collocation rows), with the
       // Rayleigh quotient x.Kx / x.Mx in the M inner product.
       VectorType x, y;
       initialize_dof_vector(x);
@@ -148,6 +149,9 @@ namespace PeriDEAL
           if (state_based)
             dilatation_pass();
           force_pass();
+          // The collocation rows (the force pass skips their nodes).
+          if (!collocation_chunks.empty())
+            collocation_pass();
           double xkx = 0, xmx = 0;
           for (unsigned int i = 0; i < n_owned; ++i)
             {

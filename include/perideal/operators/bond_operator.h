@@ -303,36 +303,49 @@ namespace PeriDEAL
        * @p switch_nodes false nothing switches: it returns the number of
        * nodes that would (the fixed configuration, which stops then).
        *
-       * The scan also records, for critical_bond_possible(), the smallest
-       * margin $\min(	ext{fraction}\, s_0 - s)$ over the bonds of the
-       * nodes that stay collocation nodes and the displacement of every
-       * node within their stencils.
+       * With @p only_due, right after critical_bond_possible() returned
+       * true for the same displacement, only the chunks of collocation nodes
+       * that it found due are scanned; otherwise all are. A scanned node's
+       * margin \f$\min(\text{fraction}\, s_0 - s)\f$ over its bonds is
+       * recorded and its drift restarts from zero.
        */
       std::size_t
       switch_critical_nodes(const VectorType &displacement,
                             const double      fraction,
-                            const bool        switch_nodes = true);
+                            const bool        switch_nodes = true,
+                            const bool        only_due     = false);
 
       /**
        * Whether a bond of a collocation node may have reached the fraction
-       * of switch_critical_nodes() since its last scan, under
-       * @p displacement (ghost values up to date): a stretch
-       * $s = e/r$ with $|e(\eta) - e(\eta')| \le |\eta - \eta'|$
-       * (linearised and finite kinematics alike) has changed by at most
-       * $2 D / r_{\min}$, D the largest displacement change of a node
-       * within the stencil of a collocation node, so no bond can have
-       * reached the threshold while $2 D / r_{\min}$ stays below the
-       * scan's margin. A scan at the steps where this is true switches the
-       * same nodes at the same steps as a scan at every step. O(nodes)
-       * work; collective (one reduction) unless no collocation node is
-       * left.
+       * of switch_critical_nodes() since the node's last scan, under
+       * @p displacement (ghost values up to date), called once per step
+       * (doc/collocation.md Sect. 11.1). A stretch \f$s = e/r\f$ with
+       * \f$|e(\eta) - e(\eta')| \le |\eta - \eta'|\f$ (linearised and
+       * finite kinematics alike) changes in one step by at most
+       * \f$|\delta u_j - \delta u_i| / r\f$; along a lattice path of
+       * \f$|k|_1\f$ edges inside the node's stencil box that is at most
+       * \f$|k|_1 E / r_k\f$, E the largest change \f$|\delta u_a -
+       * \delta u_b|\f$ of a lattice edge in the 3^dim tiles (of the
+       * stencil's reach) around the node's own. Each node sums these bounds
+       * since its last scan (its drift); a chunk of nodes is due once a
+       * node's drift reaches its margin. A scan of the due chunks at the
+       * steps where this is true switches the same nodes at the same steps
+       * as a scan of every node at every step. O(nodes) work; collective
+       * (one reduction) unless no collocation node is left.
        */
       bool
-      critical_bond_possible(const VectorType &displacement) const;
+      critical_bond_possible(const VectorType &displacement);
 
-      /// The margin of the last scan (switch_critical_nodes()): the
-      /// smallest fraction s_0 - s over the bonds of the remaining
-      /// collocation nodes, on all processes (infinite: none).
+      /// The collocation nodes scanned by switch_critical_nodes() and the
+      /// number a scan of every collocation node at every step would have
+      /// scanned, summed over the steps and processes. Collective.
+      std::pair<std::size_t, std::size_t>
+      n_scanned_nodes() const;
+
+      /// After the last scan (switch_critical_nodes()): the smallest margin
+      /// left (fraction s_0 - s at the node's scan, minus its drift since)
+      /// over the remaining collocation nodes, on all processes (infinite:
+      /// none).
       double
       switch_margin() const
       {
@@ -512,15 +525,35 @@ namespace PeriDEAL
       std::vector<char> collocation_node;
       std::size_t       missed_switches                  = 0;
       bool              bond_energy_at_collocation_nodes = false;
-      /// The last scan of switch_critical_nodes(): its margin, and the
-      /// nodes (owned and ghost) within the stencil of a collocation node
-      /// with their displacement then (dim values each).
-      double                    scan_margin   = 0;
-      bool                      watched_valid = false;
-      std::vector<unsigned int> watched_nodes;
-      std::vector<double>       watched_displacement;
-      CollocationRow            collocation_row;
-      std::vector<Chunk>        collocation_chunks;
+      /// The smallest margin left (margin minus drift) over the remaining
+      /// collocation nodes after the last scan, on all processes (infinite:
+      /// none left).
+      double scan_margin = 0;
+      /**
+       * The state of critical_bond_possible() (bond_operator_switch.cc):
+       * tiles of lattice cells (the stencil's reach on a side) over the local
+       * nodes, each node's tile and lattice neighbours, per slot the margin
+       * of the node's last scan and its drift since, the displacement of the
+       * last step, and scratch for this step's change and the largest edge
+       * change per tile and per 3^dim block of tiles.
+       */
+      struct SwitchTracking
+      {
+        bool                          active    = false;
+        std::int64_t                  tile_side = 1;
+        std::array<std::int64_t, dim> n_tiles{};
+        double                        path_factor = 0;
+        std::vector<unsigned int>     node_tile, slot_tile;
+        std::vector<int>              node_neighbor;
+        std::vector<char>             chunk_due;
+        std::vector<double>           slot_margin, slot_drift;
+        std::vector<double>           previous_displacement, step_change;
+        std::vector<double>           tile_edge, tile_block;
+        std::size_t                   n_scanned = 0, n_possible = 0;
+      };
+      SwitchTracking     tracking;
+      CollocationRow     collocation_row;
+      std::vector<Chunk> collocation_chunks;
 
       std::vector<ListBond> list_bonds;
       std::vector<double>   list_theta_scale; // m_0 / m_i per node
@@ -677,6 +710,15 @@ namespace PeriDEAL
       /// (bond_operator_collocation.cc).
       void
       collocation_pass() const;
+
+      /// The tiles and per-slot state of critical_bond_possible(), after
+      /// use_collocation() (bond_operator_switch.cc).
+      void
+      setup_switch_tracking();
+
+      /// The owned collocation nodes (no reduction).
+      std::size_t
+      n_owned_collocation_nodes() const;
 
       /// Make the nodes flagged in @p switched standard, rebuild the work
       /// lists and the collocation chunks if any process switched one

@@ -151,13 +151,18 @@ namespace PeriDEAL
       // the crack has left the region, as a scan would find.
       const std::size_t broken_at_collocation =
         hybrid->adaptive ? 0 : bond_operator.n_missed_switches();
-      if (broken_at_collocation == 0 && !hybrid->scan_every_step &&
-          !bond_operator.critical_bond_possible(u))
+      // With the bound, only the chunks it found due are scanned.
+      const bool by_bound =
+        broken_at_collocation == 0 && !hybrid->scan_every_step;
+      if (by_bound && !bond_operator.critical_bond_possible(u))
         return;
       ++n_switch_scans;
       const double      fraction = hybrid->adaptive ? hybrid->alpha : 1.;
       const std::size_t n =
-        bond_operator.switch_critical_nodes(u, fraction, hybrid->adaptive);
+        bond_operator.switch_critical_nodes(u,
+                                            fraction,
+                                            hybrid->adaptive,
+                                            by_bound);
       if (hybrid->adaptive)
         n_standard_nodes = n_total_nodes - bond_operator.n_collocation_nodes();
       else
@@ -181,13 +186,17 @@ namespace PeriDEAL
     {
       if (hybrid == nullptr)
         return;
-      const std::size_t missed = bond_operator.n_missed_switches();
+      const std::size_t missed  = bond_operator.n_missed_switches();
+      const auto        scanned = bond_operator.n_scanned_nodes();
       simulator.get_pcout()
         << "           hybrid: " << n_standard_nodes << " of " << n_total_nodes
         << " nodes standard at the end (" << std::setprecision(3)
         << 100. * n_standard_nodes / std::max<std::size_t>(n_total_nodes, 1)
         << " %), " << n_switch_scans << " bond scans in "
-        << step_number - loop_start_step << " steps, " << missed
+        << step_number - loop_start_step << " steps, " << scanned.first
+        << " node scans (" << std::setprecision(3)
+        << 100. * scanned.first / std::max<std::size_t>(scanned.second, 1)
+        << " % of a scan of every collocation node at every step), " << missed
         << " late switches (a bond of a collocation node broke or was past "
            "its critical stretch when found)"
         << std::defaultfloat << std::endl;
