@@ -13,6 +13,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
 #include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
+#include <perideal/problems/node_region.h>
 
 #include <iomanip>
 #include <sstream>
@@ -75,22 +76,7 @@ namespace PeriDEAL
 
       // The fixed standard region: boxes and boundary layers, each of which
       // must hold a node.
-      const std::string path = "Quadrature/hybrid/";
-      const auto        standard =
-        internal::ExplicitDynamicsImplementation::nodes_in_region(
-          simulator,
-          internal::ExplicitDynamicsImplementation::NodeRegion<dim>{
-            hybrid->boxes,
-            path + "Standard boxes",
-            hybrid->boxes_text,
-            "makes no node standard",
-            hybrid->boundary_ids,
-            path + "Standard boundary ids",
-            hybrid->boundary_ids_text,
-            hybrid->layer_thickness,
-            path + "Standard layer thickness",
-            hybrid->layer_thickness_text,
-            "standard layer"});
+      const auto standard = hybrid_standard_region(simulator);
       // The energy balance counts every node's bonds (positive, and no
       // jump when a node switches); the collocation nodes' forces do the
       // work, so the balance holds to the difference of the quadratures.
