@@ -33,30 +33,6 @@ namespace PeriDEAL
       if (simulator.get_quadrature_scheme().hybrid() == nullptr)
         return;
       this->check_collocation_model(simulator);
-      // The checkpoint does not hold which nodes have switched: a resumed
-      // run would restart them all as collocation nodes.
-      const std::string why =
-        "a checkpoint does not hold which nodes the hybrid scheme has "
-        "switched to the standard scheme yet, so a resumed run would not "
-        "continue this one; run without checkpoints, or use 'Quadrature/"
-        "Scheme = standard'";
-      const std::string section = "explicit dynamics/";
-      AssertThrow(!resume,
-                  ExcInvalidInput(section + "Resume from checkpoint",
-                                  "true",
-                                  why));
-      AssertThrow(checkpoint_every_steps == 0,
-                  ExcInvalidInput(section + "Checkpoint every steps",
-                                  std::to_string(checkpoint_every_steps),
-                                  why + " (set 0)"));
-      AssertThrow(checkpoint_minutes == 0,
-                  ExcInvalidInput(section + "Checkpoint interval",
-                                  to_string(checkpoint_minutes),
-                                  why + " (set 0)"));
-      AssertThrow(steps_per_run == 0,
-                  ExcInvalidInput(section + "Steps per run",
-                                  std::to_string(steps_per_run),
-                                  why + " (set 0)"));
     }
 
 
