@@ -36,7 +36,15 @@ namespace PeriDEAL
       collocation = {};
       if (const auto *settings = context.quadrature_scheme.collocation())
         {
-          collocation = bond_operator.use_collocation(*settings);
+          // The hybrid scheme's fixed standard region (no node switches
+          // in a static solve; QuasiStatic refuses 'adaptive').
+          const bool hybrid = context.quadrature_scheme.hybrid() != nullptr;
+          AssertThrow(!hybrid || context.hybrid_standard != nullptr,
+                      ExcInternalError());
+          collocation =
+            bond_operator.use_collocation(*settings,
+                                          hybrid ? *context.hybrid_standard :
+                                                   std::vector<bool>());
           std::ostringstream line;
           line << "quadrature '" << context.quadrature_scheme_name
                << "': order " << settings->order << ", "
@@ -44,8 +52,11 @@ namespace PeriDEAL
                << collocation.n_monomials << " monomials), cond(A) "
                << std::setprecision(2) << std::scientific
                << collocation.condition << std::defaultfloat << "; "
-               << collocation.n_collocation_nodes << " nodes by collocation, "
-               << collocation.n_cut_nodes
+               << collocation.n_collocation_nodes << " nodes by collocation, ";
+          if (hybrid)
+            line << collocation.n_fixed_standard
+                 << " standard (fixed region), ";
+          line << collocation.n_cut_nodes
                << " standard (ball cut by the surface), "
                << collocation.n_ill_conditioned
                << " standard (ill-conditioned cloud)";

@@ -8,6 +8,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/problems/node_region.h>
 #include <perideal/problems/quasi_static.h>
 
 #include <cmath>
@@ -82,6 +83,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    QuasiStatic<dim>::supports_hybrid() const
+    {
+      return true;
+    }
+
+
+    template <int dim>
     void
     QuasiStatic<dim>::check_collocation_input(
       const Simulator<dim> &simulator) const
@@ -98,6 +107,15 @@ namespace PeriDEAL
                                     "treatment/Treatment = none' or 'Scheme "
                                     "= standard'"));
       this->check_collocation_model(simulator);
+      const auto *hybrid = simulator.get_quadrature_scheme().hybrid();
+      AssertThrow(hybrid == nullptr || !hybrid->adaptive,
+                  ExcInvalidInput("Quadrature/hybrid/Configuration",
+                                  "adaptive",
+                                  "a quasi-static solve breaks no bonds, so "
+                                  "no node would ever switch to the standard "
+                                  "scheme; set 'Configuration = fixed' (the "
+                                  "standard boxes and layers, and the nodes "
+                                  "whose ball is cut, are standard)"));
       const auto &solver = simulator.get_linear_solver();
       solver.check_form(solver.is_matrix_free() ?
                           Solvers::OperatorForm::matrix_free :
@@ -144,7 +162,10 @@ namespace PeriDEAL
               "; they depend on t" :
               "; they do not depend on t")
         << std::endl;
-      const Boundary::SystemContext<dim> context = simulator.system_context();
+      Boundary::SystemContext<dim> context = simulator.system_context();
+      // The hybrid scheme's fixed standard region (empty without it).
+      const std::vector<bool> standard = hybrid_standard_region(simulator);
+      context.hybrid_standard          = &standard;
       system = simulator.get_boundary_treatment().template make_system<dim>(
         simulator.get_boundary_treatment_name());
       system->setup(context);

@@ -364,7 +364,8 @@ namespace PeriDEAL
                     "the problem type '" + problem_name +
                       "' does not support this quadrature scheme yet "
                       "('collocation': quasi-static and diffusion; 'hybrid': "
-                      "explicit dynamics); use 'Scheme = standard'" +
+                      "explicit dynamics, and quasi-static with a fixed "
+                      "standard region); use 'Scheme = standard'" +
                       std::string(problem->supports_hybrid() ?
                                     ", or 'hybrid' (collocation nodes that "
                                     "switch to standard where bonds near "

@@ -243,9 +243,13 @@ group_collocation() {
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = none\nend\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend')" \
     "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation rows are built for the body's own nodes"
   expect_error "$bb; $(col '' '\nset Problem type = explicit dynamics')" \
-    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support this quadrature scheme yet ('collocation': quasi-static and diffusion; 'hybrid': explicit dynamics); use 'Scheme = standard', or 'hybrid'"
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support this quadrature scheme yet ('collocation': quasi-static and diffusion; 'hybrid': explicit dynamics, and quasi-static with a fixed standard region); use 'Scheme = standard', or 'hybrid'"
+  # A static solve breaks no bonds: the adaptive switch would never fire.
   expect_error "$bb; $(col '' "$gmres"); s/set Scheme = collocation/set Scheme = hybrid/" \
-    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the problem type 'quasi-static' does not support this quadrature scheme yet"
+    "Invalid value 'adaptive' for the parameter 'Quadrature/hybrid/Configuration': a quasi-static solve breaks no bonds, so no node would ever switch"
+  # A fixed standard box that holds no node.
+  expect_error "$bb; $(col '  subsection hybrid\n    set Configuration = fixed\n    set Standard boxes = 5, 5, 6, 6\n  end' "$gmres"); s/set Scheme = collocation/set Scheme = hybrid/" \
+    "Invalid value '5, 5, 6, 6' for the parameter 'Quadrature/hybrid/Standard boxes'"
   expect_error "$bb; s/set Dimension = 2/set Dimension = 2\nsubsection Quadrature\n  subsection collocation\n    set Order = 4\n  end\nend/" \
     "The entry 'Quadrature/collocation/Order' (line 4) belongs to 'collocation', but 'Quadrature/Scheme' selects 'standard'"
 }

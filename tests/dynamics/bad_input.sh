@@ -223,10 +223,6 @@ group_hybrid() {
     "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
   expect_error "$(hy '')"'; s/  set Model = bond-based/  set Model = linear peridynamic solid/; s/  subsection bond-based/  subsection linear peridynamic solid/' \
     "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the collocation form of state-based models (LPS) is derived"
-  expect_error "$(hy '')"'; s/  set End time = 1e-4/  set End time = 1e-4\n  set Checkpoint every steps = 10/' \
-    "Invalid value '10' for the parameter 'explicit dynamics/Checkpoint every steps': a checkpoint does not hold which nodes the hybrid scheme has switched"
-  expect_error "$(hy '')"'; s/  set End time = 1e-4/  set End time = 1e-4\n  set Steps per run = 10/' \
-    "Invalid value '10' for the parameter 'explicit dynamics/Steps per run': a checkpoint does not hold which nodes the hybrid scheme has switched"
   expect_error "$(hy '  subsection hybrid\n    set Configuration = fixed\n    set Critical stretch fraction = 0.5\n  end')" \
     "Invalid value '0.5' for the parameter 'Quadrature/hybrid/Critical stretch fraction': this entry has no effect here: with 'Configuration = fixed' no node switches"
   expect_error "$(hy '  subsection hybrid\n    set Standard layer thickness = 2\n  end')" \

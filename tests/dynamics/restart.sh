@@ -9,7 +9,10 @@
 # compared as text) and the same time series. Also: a checkpoint left in
 # checkpoint.old/ (a run killed between the two renames) is found; the run
 # resumes on another number of processes too (below); resuming without a
-# checkpoint is an error that names the entry.
+# checkpoint is an error that names the entry. With the hybrid quadrature
+# scheme the switched nodes are part of the state (the standard_nodes
+# column and the 'scheme' field of the outputs are compared with the rest),
+# and resuming its checkpoint with another scheme is an error.
 set -u
 perideal="$1"; input="$2"; nprocs="$3"
 failures=0
@@ -69,6 +72,17 @@ numdiff -q -s ', \t\n' -r 1e-8 -a 1e-20 whole/energies.csv switched/energies.csv
 awk -F, 'NR > 1 { print $7 }' whole/energies.csv > broken.whole
 awk -F, 'NR > 1 { print $7 }' switched/energies.csv > broken.switched
 cmp -s broken.whole broken.switched || fail "resumed on $other processes: broken bonds differ"
+
+# A hybrid checkpoint (Quadrature/Scheme = hybrid: the nodes that have
+# switched are part of the state) does not resume with another scheme.
+if grep -q "set Scheme = hybrid" "$input"; then
+  sed 's/set Scheme = hybrid/set Scheme = standard/; /subsection hybrid/,/^  end/d' next_switched.prm > next_standard.prm
+  run "$nprocs" next_standard.prm standard.log; rc=$?
+  [ $rc -ne 0 ] || fail "a hybrid checkpoint resumed with 'Scheme = standard' exited with 0"
+  grep -qF "for the parameter 'explicit dynamics/Resume from checkpoint'" standard.log &&
+    grep -qF "Quadrature/Scheme" standard.log \
+    || { tail -3 standard.log; fail "a hybrid checkpoint resumed with 'Scheme = standard': no clear message"; }
+fi
 
 # Errors.
 rm -rf chunks

@@ -116,6 +116,11 @@ namespace PeriDEAL
 
       /// Print "[ wall time s] text" on rank 0.
       std::function<void(const std::string &)> print_progress;
+
+      /// With the hybrid quadrature scheme: the fixed standard region
+      /// (Problems::hybrid_standard_region(), owned and ghost nodes), set by
+      /// the problem type before the system's setup().
+      const std::vector<bool> *hybrid_standard = nullptr;
     };
 
 

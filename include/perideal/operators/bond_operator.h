@@ -342,6 +342,15 @@ namespace PeriDEAL
       std::pair<std::size_t, std::size_t>
       n_scanned_nodes() const;
 
+      /**
+       * Make the owned collocation nodes @p switched standard for good, and
+       * re-cut the work lists and the collocation chunks if any process
+       * switched one (a resumed hybrid run restores its switched nodes so).
+       * Collective; returns the number switched on all processes.
+       */
+      std::size_t
+      make_standard(const std::vector<unsigned int> &switched);
+
       /// After the last scan (switch_critical_nodes()): the smallest margin
       /// left (fraction s_0 - s at the node's scan, minus its drift since)
       /// over the remaining collocation nodes, on all processes (infinite:
@@ -720,11 +729,6 @@ namespace PeriDEAL
       std::size_t
       n_owned_collocation_nodes() const;
 
-      /// Make the nodes flagged in @p switched standard, rebuild the work
-      /// lists and the collocation chunks if any process switched one
-      /// (collective); returns the global count.
-      std::size_t
-      make_standard(const std::vector<unsigned int> &switched);
 
       /// 2 sum_j (pair energy) of the intact bonds of node @p i from u_slot
       /// (bond_operator_energy.cc).

@@ -100,8 +100,7 @@ namespace PeriDEAL
       run(Simulator<dim> &simulator) override;
 
       /// TimeSteppingProblem's checks, and with `Quadrature/Scheme =
-      /// hybrid` a bond-based model and no checkpoints (they do not hold
-      /// the switched nodes yet).
+      /// hybrid` a bond-based model.
       void
       check_input(const Simulator<dim> &simulator) const override;
 

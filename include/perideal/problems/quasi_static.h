@@ -48,6 +48,13 @@ namespace PeriDEAL
       bool
       supports_collocation() const override;
 
+      /// True, with 'Configuration = fixed' (no bond breaks in a static
+      /// solve yet, so no node would switch): the standard region of
+      /// 'Quadrature/hybrid' and the nodes whose ball is cut are standard,
+      /// every other node takes the collocation row.
+      bool
+      supports_hybrid() const override;
+
       /// Those of 'Boundary conditions', the failure and inertia entries
       /// of the material model, and the analytical displacement without a
       /// comparison.

@@ -87,6 +87,20 @@ namespace PeriDEAL
                 for (unsigned int d = 0; d < dim; ++d)
                   out.put(nodes[bond_state.neighbor(i, k)].location[d]);
           }
+        // The hybrid scheme: after the node records, the positions of the
+        // owned nodes that are still collocation nodes (every other node
+        // is standard; read_checkpoint() switches them).
+        if (hybrid != nullptr)
+          {
+            std::vector<unsigned int> collocation;
+            for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+              if (bond_operator.is_collocation_node(i))
+                collocation.push_back(i);
+            out.put<std::uint64_t>(collocation.size());
+            for (const unsigned int i : collocation)
+              for (unsigned int d = 0; d < dim; ++d)
+                out.put(nodes[i].location[d]);
+          }
         finish(out, path);
         piece = {nodes.n_owned(), out.size, out.checksum.value};
       }

@@ -120,6 +120,15 @@ namespace PeriDEAL
                                                           "Horizon/Length");
       add("Partial volumes/Algorithm");
       add_all_under("Partial volumes/" + entries["Partial volumes/Algorithm"]);
+      // The quadrature scheme and its entries (none for the standard
+      // scheme: its checkpoints keep the keys they had before there were
+      // others).
+      if (entries["Quadrature/Scheme"] != "standard")
+        {
+          add("Quadrature/Scheme");
+          add_all_under("Quadrature/collocation");
+          add_all_under("Quadrature/hybrid");
+        }
       // The mesh file's content is in the hash of the node positions.
       add("Geometry/Mesh");
       if (entries["Geometry/Mesh"] == "subdivided box")
@@ -197,6 +206,8 @@ namespace PeriDEAL
       // The columns of the energy file, as write_output() writes them.
       std::string columns = "time,step,kinetic_energy,elastic_energy,"
                             "external_work,energy_balance,broken_bonds";
+      if (hybrid != nullptr)
+        columns += ",standard_nodes";
       for (unsigned int k = 0; k < probe_points.size(); ++k)
         for (unsigned int c = 0; c < dim; ++c)
           columns += ",probe" + std::to_string(k) + "_u" + "xyz"[c];
@@ -227,7 +238,8 @@ namespace PeriDEAL
           "the failure constants of 'Material model' and the horizon");
       add("energy file columns",
           columns,
-          "'explicit dynamics/Probe points' and 'Crack tip origin'");
+          "'explicit dynamics/Probe points' and 'Crack tip origin', and "
+          "'Quadrature/Scheme' (hybrid: standard_nodes)");
       add("time step",
           exact(dt),
           "'explicit dynamics/End time', 'Time step' and 'Safety factor', "

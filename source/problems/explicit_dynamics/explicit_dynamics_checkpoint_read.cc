@@ -353,6 +353,8 @@ namespace PeriDEAL
           index_of.emplace(key, i);
         }
       std::vector<bool> seen(nodes.n_owned(), false);
+      // The hybrid scheme: the owned nodes that were collocation nodes.
+      std::vector<bool> collocation(nodes.n_owned(), false);
       unsigned int      restored = 0, unknown_neighbors = 0;
       check_on_all_ranks(
         [&]() {
@@ -442,6 +444,23 @@ namespace PeriDEAL
                   else
                     in.skip(n_broken * dim * sizeof(double));
                 }
+              // The hybrid scheme (the keys say the writer used it too):
+              // the positions of the writer's collocation nodes.
+              if (hybrid != nullptr)
+                {
+                  const auto n_collocation =
+                    in.get_count(dim * sizeof(double),
+                                 n,
+                                 "number of collocation nodes",
+                                 "node records of the file");
+                  for (std::uint64_t q = 0; q < n_collocation; ++q)
+                    {
+                      // (Nodes of other processes are not found here.)
+                      const auto it = index_of.find(read_key());
+                      if (it != index_of.end() && it->second < nodes.n_owned())
+                        collocation[it->second] = true;
+                    }
+                }
               if (in.bytes_left() != 0)
                 in.corrupt("has " + std::to_string(in.bytes_left()) +
                            " bytes after its last node record");
@@ -469,6 +488,37 @@ namespace PeriDEAL
       bond_state.synchronize();
       u.update_ghost_values();
       bond_operator.update_bond_state();
+      if (hybrid != nullptr)
+        {
+          // The nodes that had switched when the checkpoint was written
+          // switch again (the same input starts the same nodes as
+          // collocation nodes, and a node never switches back).
+          std::vector<unsigned int> switched;
+          bool                      fits = true;
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            if (bond_operator.is_collocation_node(i) && !collocation[i])
+              switched.push_back(i);
+            else if (!bond_operator.is_collocation_node(i) && collocation[i])
+              fits = false;
+          AssertThrow(Utilities::MPI::min(fits ? 1 : 0, comm) == 1,
+                      ExcInvalidInput(
+                        "explicit dynamics/Resume from checkpoint",
+                        "true",
+                        "the checkpoint in '" + dir.string() +
+                          "' holds collocation nodes that are standard "
+                          "from the start in this run (another 'Quadrature' "
+                          "input?); resume with the input that wrote it"));
+          bond_operator.make_standard(switched);
+          n_standard_nodes =
+            n_total_nodes - bond_operator.n_collocation_nodes();
+          // The scan's margins from the restored state (no node can switch
+          // here: the run that wrote the checkpoint scanned this state at
+          // the end of its last step).
+          bond_operator.switch_critical_nodes(u,
+                                              hybrid->adaptive ? hybrid->alpha :
+                                                                 1.,
+                                              hybrid->adaptive);
+        }
       simulator.get_pcout()
         << "           resumed from " << dir.string() << " at step "
         << step_number << " (t = " << time << " s), " << broken_bonds

@@ -13,6 +13,7 @@
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/explicit_dynamics.h>
 #include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
+#include <perideal/problems/node_region.h>
 
 #include <iomanip>
 #include <sstream>
@@ -32,30 +33,6 @@ namespace PeriDEAL
       if (simulator.get_quadrature_scheme().hybrid() == nullptr)
         return;
       this->check_collocation_model(simulator);
-      // The checkpoint does not hold which nodes have switched: a resumed
-      // run would restart them all as collocation nodes.
-      const std::string why =
-        "a checkpoint does not hold which nodes the hybrid scheme has "
-        "switched to the standard scheme yet, so a resumed run would not "
-        "continue this one; run without checkpoints, or use 'Quadrature/"
-        "Scheme = standard'";
-      const std::string section = "explicit dynamics/";
-      AssertThrow(!resume,
-                  ExcInvalidInput(section + "Resume from checkpoint",
-                                  "true",
-                                  why));
-      AssertThrow(checkpoint_every_steps == 0,
-                  ExcInvalidInput(section + "Checkpoint every steps",
-                                  std::to_string(checkpoint_every_steps),
-                                  why + " (set 0)"));
-      AssertThrow(checkpoint_minutes == 0,
-                  ExcInvalidInput(section + "Checkpoint interval",
-                                  to_string(checkpoint_minutes),
-                                  why + " (set 0)"));
-      AssertThrow(steps_per_run == 0,
-                  ExcInvalidInput(section + "Steps per run",
-                                  std::to_string(steps_per_run),
-                                  why + " (set 0)"));
     }
 
 
@@ -75,22 +52,7 @@ namespace PeriDEAL
 
       // The fixed standard region: boxes and boundary layers, each of which
       // must hold a node.
-      const std::string path = "Quadrature/hybrid/";
-      const auto        standard =
-        internal::ExplicitDynamicsImplementation::nodes_in_region(
-          simulator,
-          internal::ExplicitDynamicsImplementation::NodeRegion<dim>{
-            hybrid->boxes,
-            path + "Standard boxes",
-            hybrid->boxes_text,
-            "makes no node standard",
-            hybrid->boundary_ids,
-            path + "Standard boundary ids",
-            hybrid->boundary_ids_text,
-            hybrid->layer_thickness,
-            path + "Standard layer thickness",
-            hybrid->layer_thickness_text,
-            "standard layer"});
+      const auto standard = hybrid_standard_region(simulator);
       // The energy balance counts every node's bonds (positive, and no
       // jump when a node switches); the collocation nodes' forces do the
       // work, so the balance holds to the difference of the quadratures.

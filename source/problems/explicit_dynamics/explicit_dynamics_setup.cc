@@ -13,6 +13,7 @@
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/explicit_dynamics.h>
 #include <perideal/problems/explicit_dynamics/explicit_dynamics_internal.h>
+#include <perideal/problems/node_region.h>
 
 #include <array>
 #include <cmath>
@@ -24,61 +25,6 @@ namespace PeriDEAL
   namespace Problems
   {
     using internal::ExplicitDynamicsImplementation::to_string;
-
-
-    namespace internal
-    {
-      namespace ExplicitDynamicsImplementation
-      {
-        template <int dim>
-        std::vector<bool>
-        nodes_in_region(const Simulator<dim>  &simulator,
-                        const NodeRegion<dim> &region)
-        {
-          const auto       &nodes = simulator.get_nodes();
-          std::vector<bool> in =
-            Discretization::nodes_in_boxes(nodes,
-                                           region.boxes,
-                                           region.boxes_entry,
-                                           region.boxes_text,
-                                           region.boxes_purpose);
-          if (region.ids.empty())
-            return in;
-          const auto &triangulation =
-            simulator.get_dof_handler().get_triangulation();
-          Boundary::check_boundary_ids(triangulation,
-                                       region.ids,
-                                       region.ids_entry,
-                                       region.ids_text);
-          // The counts are sums over the processes: every process throws
-          // alike.
-          std::vector<unsigned int> n_in_layer;
-          const auto                layer =
-            Boundary::BoundaryLayers<dim>(triangulation, region.ids)
-              .layer_of_nodes(nodes,
-                              region.thickness * simulator.get_horizon(),
-                              &n_in_layer);
-          for (unsigned int i = 0; i < nodes.size(); ++i)
-            if (layer[i] != numbers::invalid_unsigned_int)
-              in[i] = true;
-          for (unsigned int k = 0; k < region.ids.size(); ++k)
-            AssertThrow(n_in_layer[k] > 0,
-                        ExcInvalidInput(region.thickness_entry,
-                                        region.thickness_text,
-                                        "the " + region.layer_purpose +
-                                          " of boundary id " +
-                                          std::to_string(region.ids[k]) +
-                                          " holds no node centre; use a "
-                                          "layer of at least half a cell"));
-          return in;
-        }
-
-        template std::vector<bool>
-        nodes_in_region(const Simulator<2> &, const NodeRegion<2> &);
-        template std::vector<bool>
-        nodes_in_region(const Simulator<3> &, const NodeRegion<3> &);
-      } // namespace ExplicitDynamicsImplementation
-    }   // namespace internal
 
 
     template <int dim>
@@ -99,21 +45,19 @@ namespace PeriDEAL
       // and layers (each of which must hold a node).
       const double        s0 = model.critical_stretch(horizon);
       std::vector<double> critical(nodes.size(), s0);
-      const auto          no_fail =
-        internal::ExplicitDynamicsImplementation::nodes_in_region(
-          simulator,
-          internal::ExplicitDynamicsImplementation::NodeRegion<dim>{
-            no_fail_boxes,
-            "explicit dynamics/No-fail boxes",
-            no_fail_text,
-            "keeps no bond from failing",
-            no_fail_ids,
-            "explicit dynamics/No-fail boundary ids",
-            no_fail_ids_text,
-            no_fail_thickness,
-            "explicit dynamics/No-fail layer thickness",
-            no_fail_thickness_text,
-            "no-fail layer"});
+      const auto          no_fail = nodes_in_region(
+        simulator,
+        NodeRegion<dim>{no_fail_boxes,
+                                 "explicit dynamics/No-fail boxes",
+                                 no_fail_text,
+                                 "keeps no bond from failing",
+                                 no_fail_ids,
+                                 "explicit dynamics/No-fail boundary ids",
+                                 no_fail_ids_text,
+                                 no_fail_thickness,
+                                 "explicit dynamics/No-fail layer thickness",
+                                 no_fail_thickness_text,
+                                 "no-fail layer"});
       for (unsigned int i = 0; i < nodes.size(); ++i)
         if (no_fail[i])
           critical[i] = std::numeric_limits<double>::infinity();

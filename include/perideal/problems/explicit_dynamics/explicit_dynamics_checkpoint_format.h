@@ -32,7 +32,10 @@
 //                    last, the checksum of run.bin itself
 //   state.<rank>.bin (every rank) per owned node: its position (the key),
 //                    u, v, a and the force, and the positions of the
-//                    neighbours at the ends of its broken bonds
+//                    neighbours at the ends of its broken bonds; with the
+//                    hybrid quadrature scheme (a key), then the number and
+//                    the positions of the owned nodes that are still
+//                    collocation nodes
 // Checksums are 64-bit FNV-1a over every byte of a file. The first 88 bytes
 // of run.bin (magic to the number of energy rows) and the layout of the
 // state files are those of the first format (PERIDYN2), so that the

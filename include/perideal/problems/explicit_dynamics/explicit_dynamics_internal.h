@@ -9,7 +9,6 @@
  * each defines. Not part of the library's interface.
  */
 
-#include <deal.II/base/bounding_box.h>
 
 #include <perideal/problems/simulator.h>
 
@@ -34,34 +33,6 @@ namespace PeriDEAL
           s << std::setprecision(6) << x;
           return s.str();
         }
-
-        /**
-         * A region of nodes given in the input as boxes and as layers along
-         * boundary ids (the no-fail region, the standard region of the
-         * hybrid scheme), with the entries that give it, for messages.
-         */
-        template <int dim>
-        struct NodeRegion
-        {
-          const std::vector<BoundingBox<dim>> &boxes;
-          std::string boxes_entry, boxes_text, boxes_purpose;
-          const std::vector<types::boundary_id> &ids;
-          std::string                            ids_entry, ids_text;
-          /// The layer thickness in horizons.
-          double      thickness;
-          std::string thickness_entry, thickness_text, layer_purpose;
-        };
-
-        /**
-         * Which nodes (owned and ghost) of the simulator lie in @p region.
-         * Every box and every layer must hold a node centre, and every id
-         * must occur in the mesh; otherwise all processes throw an error
-         * naming the entry. Collective.
-         */
-        template <int dim>
-        std::vector<bool>
-        nodes_in_region(const Simulator<dim>  &simulator,
-                        const NodeRegion<dim> &region);
       } // namespace ExplicitDynamicsImplementation
     }   // namespace internal
   }     // namespace Problems
