@@ -157,7 +157,8 @@ namespace PeriDEAL
           "inside the body and its layers; the others standard; quasi-static "
           "and diffusion) or 'hybrid' (collocation outside a standard region "
           "that is fixed or grows where bonds near failure, subsection "
-          "'hybrid'; explicit dynamics). "
+          "'hybrid'; explicit dynamics, and quasi-static with "
+          "'Configuration = fixed'). "
           "Collocation gives a non-symmetric operator: use GMRES or "
           "BiCGStab.");
         Quadrature::QuadratureSchemeRegistry<dim>::declare_parameters(prm);
