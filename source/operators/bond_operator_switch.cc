@@ -392,7 +392,9 @@ namespace PeriDEAL
       // scan; its chunk is due once the drift reaches the node's margin
       // (with a hair of slack for the rounding of the stretches
       // themselves).
-      std::vector<char> due(collocation_chunks.size(), 0);
+      // (Into the kept flags: no allocation per step.)
+      std::vector<char> &due = t.chunk_due;
+      due.assign(collocation_chunks.size(), 0);
       parallel::apply_to_subranges(
         std::size_t(0),
         collocation_chunks.size(),
@@ -410,7 +412,6 @@ namespace PeriDEAL
             }
         },
         LoopLayout<dim>::chunk_grain);
-      t.chunk_due = due;
       t.n_possible += n_owned_collocation_nodes();
       const bool any_due =
         std::any_of(due.begin(), due.end(), [](const char x) { return x; });
