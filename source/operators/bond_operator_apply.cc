@@ -33,6 +33,8 @@ namespace PeriDEAL
     BondOperator<dim>::dilatation_pass() const
     {
       const std::size_t n_offsets = layout.stencil_offset.size();
+      // The plain dilatations too, for the collocation rows of LPS.
+      const bool store_theta = !collocation_theta_chunks.empty();
       // The uniform bulk: theta_i = sum_k g_k n_k . (u_{i+k} - u_i),
       // vectorised over a run of consecutive slots.
       parallel::apply_to_subranges(
@@ -71,6 +73,9 @@ namespace PeriDEAL
               const double s = stencil.node_factor;
               for (unsigned int l = 0; l < len; ++l)
                 t_slot[s0 + l] = s * theta[l];
+              if (store_theta)
+                for (unsigned int l = 0; l < len; ++l)
+                  theta_slot[s0 + l] = theta[l];
             }
         },
         LoopLayout<dim>::chunk_grain);
@@ -93,7 +98,11 @@ namespace PeriDEAL
                                 if (layout.use_lattice)
                                   theta *= list_theta_scale[i];
                                 t_slot[si] = s_slot[si] * theta;
+                                if (store_theta)
+                                  theta_slot[si] = theta;
                               });
+      if (store_theta)
+        collocation_dilatation_pass();
     }
 
 

@@ -40,6 +40,10 @@ namespace PeriDEAL
       AssertThrow(constraints == nullptr || rhs != nullptr,
                   ExcMessage("BondOperator::assemble: constraints need a "
                              "right-hand side vector."));
+      AssertThrow(collocation_theta.empty(),
+                  ExcMessage("BondOperator::assemble: the collocation rows "
+                             "of state-based models are evaluated "
+                             "matrix-free only (apply())."));
 
       // Which components are prescribed, and to what: looked up once here,
       // never in the loops over nonzeros.

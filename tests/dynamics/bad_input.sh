@@ -222,7 +222,7 @@ group_hybrid() {
   expect_error "$(hy '  subsection collocation\n    set Order = 4\n  end')" \
     "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
   expect_error "$(hy '')"'; s/  set Model = bond-based/  set Model = linear peridynamic solid/; s/  subsection bond-based/  subsection linear peridynamic solid/' \
-    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the collocation form of state-based models (LPS) is derived"
+    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the collocation rows of state-based models (LPS, doc/collocation.md Sect. 5) run in quasi-static problems only so far"
   expect_error "$(hy '  subsection hybrid\n    set Configuration = fixed\n    set Critical stretch fraction = 0.5\n  end')" \
     "Invalid value '0.5' for the parameter 'Quadrature/hybrid/Critical stretch fraction': this entry has no effect here: with 'Configuration = fixed' no node switches"
   expect_error "$(hy '  subsection hybrid\n    set Standard layer thickness = 2\n  end')" \

@@ -275,9 +275,18 @@ namespace PeriDEAL
        * over the collocation nodes o_k of one shared bulk row (one fit on
        * the uniform lattice; L the moments of the linearised bond-based
        * pair stiffness 2 beta(r) n (x) n). The other nodes keep the
-       * standard scheme. Only for bond-based models with linear kinematics
-       * and no failure, on a uniform lattice; apply() and assemble() both
-       * evaluate the rows; the operator is not symmetric. An ill-conditioned
+       * standard scheme. State-based (LPS) models take two rows
+       * (doc/collocation.md Sect. 5.2): every node with a full stencil
+       * (owned or ghost, not in @p standard) gets its dilatation from the
+       * fit of its own cloud, \f$\theta_i = \sum_k T_k \cdot (u_{i+o_k} -
+       * u_i)\f$, and the force of a collocation node adds
+       * \f$V_i \sum_k K_k (\theta_{i+o_k} - \theta_i)\f$ to the
+       * deviatoric row (whose moments are those of 2 c_mu omega / m n (x) n,
+       * m the continuum weighted volume); the other nodes' dilatations stay
+       * standard. Linear kinematics and no failure only (the bond-based rows
+       * also run beside the nonlinear passes of standard nodes); on a
+       * uniform lattice; apply() evaluates the rows, and assemble() for
+       * bond-based models; the operator is not symmetric. An ill-conditioned
        * bulk cloud falls back to the standard scheme everywhere or throws, as
        * @p settings say. Nodes flagged in @p standard (owned and ghost
        * indices; empty: none) keep the standard scheme (the fixed region
@@ -528,7 +537,18 @@ namespace PeriDEAL
         std::vector<unsigned int>                  stencil_index;
         std::array<std::vector<double>, dim * dim> w;
         Tensor<2, dim>                             sum;
+        /// State-based models: the dilatation row T_k (theta_w[c][k]) and
+        /// the dilatation force row V K_k (kf[c][k]), in the same order.
+        std::array<std::vector<double>, dim> theta_w, kf;
       };
+
+      /// State-based models with collocation: 1 for the nodes (owned and
+      /// ghost) whose dilatation comes from the collocation row, and the
+      /// chunks of their slots; the plain dilatation theta of every node
+      /// with a list, per slot (the collocation rows read it).
+      std::vector<char>             collocation_theta;
+      std::vector<Chunk>            collocation_theta_chunks;
+      mutable AlignedVector<double> theta_slot;
 
       /// 1 for the nodes evaluated by collocation; empty without.
       std::vector<char> collocation_node;
@@ -614,6 +634,13 @@ namespace PeriDEAL
       needs_dilatation(const unsigned int i) const
       {
         return state_based && lists->has_list(i);
+      }
+
+      /// Whether node i's dilatation comes from the collocation row.
+      bool
+      has_collocation_theta(const unsigned int i) const
+      {
+        return !collocation_theta.empty() && collocation_theta[i] != 0;
       }
 
       /// Call f(j, w_ij) for every intact bond of node i.
@@ -719,6 +746,12 @@ namespace PeriDEAL
       /// (bond_operator_collocation.cc).
       void
       collocation_pass() const;
+
+      /// State-based models: the dilatations of the nodes of
+      /// collocation_theta_chunks into theta_slot and t_slot (s theta),
+      /// after dilatation_pass() (bond_operator_collocation.cc).
+      void
+      collocation_dilatation_pass() const;
 
       /// The tiles and per-slot state of critical_bond_possible(), after
       /// use_collocation() (bond_operator_switch.cc).
