@@ -361,12 +361,44 @@ namespace PeriDEAL
             [&](const unsigned int begin, const unsigned int end) {
               for (unsigned int i = begin; i < end; ++i)
                 {
-                  if (is_collocation_node(i))
+                  if (is_collocation_node(i) && collocation_theta.empty())
                     {
                       // K_ii = V_i sum_k W_k (use_collocation()).
                       for (unsigned int c = 0; c < dim; ++c)
                         diagonal.local_element(layout.vector_index[i] + c) =
                           collocation_row.sum[c][c];
+                      continue;
+                    }
+                  if (is_collocation_node(i))
+                    {
+                      // LPS rows: K_ii = V sum_k W_k - V sum_k K_k (x)
+                      // d theta_{i+k}/du_i - V (sum_k K_k) (x) sum_k T_k,
+                      // with d theta_j/du_i = -T_k from j's row T, or
+                      // -g_k m_0/m_j n_k from its standard one.
+                      const std::size_t si = layout.slot[i];
+                      for (unsigned int c = 0; c < dim; ++c)
+                        {
+                          double w_sum = 0, k_sum = 0, t_sum = 0, coupled = 0;
+                          for (std::size_t k = 0;
+                               k < collocation_row.offset.size();
+                               ++k)
+                            {
+                              w_sum += collocation_row.w[c * dim + c][k];
+                              k_sum += collocation_row.kf[c][k];
+                              t_sum += collocation_row.theta_w[c][k];
+                              const unsigned int j = layout.node_of_slot(
+                                si + collocation_row.offset[k]);
+                              const unsigned int sk =
+                                collocation_row.stencil_index[k];
+                              const double d_theta =
+                                has_collocation_theta(j) ?
+                                  -collocation_row.theta_w[c][k] :
+                                  -stencil.g[sk] * m0 / m[j] * stencil.n[c][sk];
+                              coupled += collocation_row.kf[c][k] * d_theta;
+                            }
+                          diagonal.local_element(layout.vector_index[i] + c) =
+                            w_sum - coupled - k_sum * t_sum;
+                        }
                       continue;
                     }
                   const double   s_i = s_slot[layout.slot[i]];
@@ -391,10 +423,22 @@ namespace PeriDEAL
                               BondKernel::dilatation_stiffness(stencil.a[k],
                                                                s_i) *
                               n_c;
-                            diag[c] +=
-                              BondKernel::dilatation_stiffness(stencil.a[k],
-                                                               s_j) *
-                              n_c * n_c * stencil.g[k] * m0 / m[j];
+                            // d theta_j / du_i: the standard row of j, or
+                            // (LPS collocation) its row T at the offset
+                            // -k, -T_k (the row is odd), if i is in j's
+                            // cloud.
+                            if (!has_collocation_theta(j))
+                              diag[c] +=
+                                BondKernel::dilatation_stiffness(stencil.a[k],
+                                                                 s_j) *
+                                n_c * n_c * stencil.g[k] * m0 / m[j];
+                            else if (const int kc =
+                                       collocation_row.of_stencil_index[k];
+                                     kc >= 0)
+                              diag[c] +=
+                                BondKernel::dilatation_stiffness(stencil.a[k],
+                                                                 s_j) *
+                                n_c * collocation_row.theta_w[c][kc];
                           }
                       }
                   };

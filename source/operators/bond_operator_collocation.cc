@@ -171,11 +171,13 @@ namespace PeriDEAL
       // that W_0 u_i = -sum_{k>0} W_k u_i exactly: a rigid translation
       // gives no force), times the node's volume h^dim.
       const double volume = std::pow(h, dim);
+      collocation_row.of_stencil_index.assign(lists->stencil().size(), -1);
       for (unsigned int j = 0; j < cloud.size(); ++j)
         {
           const int k = stencil_index[selected[j]];
           if (k < 0)
             continue;
+          collocation_row.of_stencil_index[k] = collocation_row.offset.size();
           collocation_row.offset.push_back(layout.stencil_offset[k]);
           collocation_row.stencil_index.push_back(k);
           for (unsigned int c = 0; c < dim; ++c)

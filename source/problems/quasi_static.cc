@@ -106,20 +106,6 @@ namespace PeriDEAL
                                     "' adds others; use 'Boundary "
                                     "treatment/Treatment = none' or 'Scheme "
                                     "= standard'"));
-      // State-based (LPS) collocation rows: dilatation and force rows
-      // (doc/collocation.md Sect. 5.2), matrix-free only so far.
-      AssertThrow(!simulator.get_model().is_state_based() ||
-                    simulator.get_linear_solver().is_matrix_free(),
-                  ExcInvalidInput("Linear solver/Operator",
-                                  "assembled",
-                                  "the collocation rows of the state-based "
-                                  "model (the dilatation and force rows of "
-                                  "doc/collocation.md Sect. 5.2) are "
-                                  "evaluated matrix-free only so far; use "
-                                  "'Operator = matrix-free' (GMRES: the "
-                                  "operator is not symmetric), a bond-based "
-                                  "model, or 'Quadrature/Scheme = "
-                                  "standard'"));
       const auto *hybrid = simulator.get_quadrature_scheme().hybrid();
       AssertThrow(hybrid == nullptr || !hybrid->adaptive,
                   ExcInvalidInput("Quadrature/hybrid/Configuration",

@@ -234,13 +234,10 @@ group_collocation() {
   # (doc/collocation.md Sect. 7): an indefinite static operator.
   expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n  end' "$gmres")" \
     "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
-  # LPS collocation rows: matrix-free (GMRES) runs, the assembled operator
-  # is refused.
+  # LPS collocation rows run (matrix-free GMRES here).
   sed "$(col '' "$gmres")" base.prm > collocation_lps.prm
   expect_valid 1 collocation_lps.prm "collocation, LPS, GMRES" out/solution_0.pvtu
   rm -rf out
-  expect_error "$(col '' '')" \
-    "Invalid value 'assembled' for the parameter 'Linear solver/Operator': the collocation rows of the state-based model"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Method = CG\nend')" \
     "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend')" \

@@ -25,9 +25,7 @@
 #    anyway; three with LPS), the error again strictly between.
 # Each variant runs on NPROCS processes. With a state-based (LPS) INPUT
 # (Dirichlet layers two horizons thick, collocation_lps_2d_quadratic.prm)
-# the assembled variant must be refused instead (the LPS rows are
-# matrix-free only so far), naming 'Linear solver/Operator'; the standard
-# nodes' dilatations then also enter the collocation nodes' forces.
+# the standard nodes' dilatations also enter the collocation nodes' forces.
 set -u
 perideal="$1"; nprocs="$2"; input="$3"
 work="$(pwd)/hybrid_quasi_static.$(basename "$input" .prm).np${nprocs}"
@@ -63,16 +61,7 @@ run middle "$(hybrid '    set Standard boxes = 0.4, 0.4, 0.6, 0.6\n')"
 direct='/set Method  *= GMRES/d; /set Operator  *= matrix-free/d; /set Preconditioner  *= Jacobi/d; s/set Relative tolerance = 1e-13/set Method = direct/'
 lps=false
 grep -q 'set Model = linear peridynamic solid' "$input" && lps=true
-if $lps; then
-  mkdir -p middle_direct
-  sed -e "$(hybrid '    set Standard boxes = 0.4, 0.4, 0.6, 0.6\n'); $direct" "$input" > middle_direct/input.prm
-  (cd middle_direct && "$perideal" input.prm > log 2>&1) &&
-    fail "the assembled operator with LPS collocation rows was not refused"
-  grep -q "Invalid value 'assembled' for the parameter 'Linear solver/Operator'" middle_direct/log ||
-    { cat middle_direct/log; fail "the refusal does not name 'Linear solver/Operator'"; }
-else
-  run middle_direct "$(hybrid '    set Standard boxes = 0.4, 0.4, 0.6, 0.6\n'); $direct"
-fi
+run middle_direct "$(hybrid '    set Standard boxes = 0.4, 0.4, 0.6, 0.6\n'); $direct"
 # (LPS: the Dirichlet layers are two horizons thick, so three reach one
 # horizon into the free nodes; a full-ball standard node's dilatation is
 # exact on quadratics, only the standard forces are not.)
@@ -80,9 +69,7 @@ thickness=2
 $lps && thickness=3
 run layer "$(hybrid "    set Standard boundary ids = 0\\n    set Standard layer thickness = $thickness\\n")"
 
-variants="collocation standard none all middle layer"
-$lps || variants="$variants middle_direct"
-for name in $variants; do
+for name in collocation standard none all middle middle_direct layer; do
   [ -n "$(error_line $name)" ] || { cat $name/log; fail "no error line in '$name'"; }
   echo "$name: $(error_line $name)"
 done
@@ -99,13 +86,11 @@ grep -q "quadrature 'hybrid': .* $n_box standard (fixed region)" middle/log ||
 awk -v c="$(l2 collocation)" -v h="$(l2 middle)" -v s="$(l2 standard)" \
   'BEGIN { exit !(c < h && h < s && h > 1e-10) }' ||
   fail "the error with a standard box in the middle ($(l2 middle)) is not between collocation ($(l2 collocation)) and standard ($(l2 standard))"
-if ! $lps; then
-  grep -q "solved with direct\|MUMPS\|direct" middle_direct/log ||
-    fail "the assembled run did not use the direct solver"
-  awk -v a="$(l2 middle)" -v b="$(l2 middle_direct)" \
-    'BEGIN { d = (a - b) / a; if (d < 0) d = -d; exit !(d < 1e-3) }' ||
-    fail "matrix-free ($(l2 middle)) and assembled ($(l2 middle_direct)) hybrid runs differ"
-fi
+grep -q "solved with direct\|MUMPS\|direct" middle_direct/log ||
+  fail "the assembled run did not use the direct solver"
+awk -v a="$(l2 middle)" -v b="$(l2 middle_direct)" \
+  'BEGIN { d = (a - b) / a; if (d < 0) d = -d; exit !(d < 1e-3) }' ||
+  fail "matrix-free ($(l2 middle)) and assembled ($(l2 middle_direct)) hybrid runs differ"
 grep -q "quadrature 'hybrid': .* [1-9][0-9]* standard (fixed region)" layer/log ||
   { grep "quadrature 'hybrid'" layer/log; fail "the standard layer holds no node"; }
 awk -v c="$(l2 collocation)" -v h="$(l2 layer)" -v s="$(l2 standard)" \

@@ -21,6 +21,11 @@
 //    operator mu Laplace u + (c_K / d + 2 mu) grad div u with the model's
 //    constants (doc/collocation.md Sect. 5.2, "Order 2"), which checks the
 //    quadrature reference itself;
+//  - comparison of evaluations: the assembled matrix against the
+//    matrix-free apply (K u = -F(u), 1e-12 relative) on a smooth
+//    non-polynomial field, and the diagonal (compute_diagonal(), which
+//    takes the dilatation rows of the neighbours into account) against the
+//    matrix's (1e-12);
 //  - 1 against 2 threads: bitwise the same forces;
 //  - the printed counts do not depend on the number of MPI ranks.
 
@@ -37,6 +42,9 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
@@ -299,10 +307,50 @@ check(const std::string &influence,
   n_deep       = Utilities::MPI::sum(n_deep, comm);
   n_checked    = Utilities::MPI::sum(n_checked, comm);
 
+  // A smooth non-polynomial field: the assembled matrix against the
+  // matrix-free apply, the diagonal, threads.
+  for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        const Point<dim> &x = nodes[i].location;
+        u[nodes[i].dofs[c]] =
+          1e-3 * (std::sin(0.3 * x[0] + c) * std::cos(0.2 * x[dim - 1]) +
+                  0.01 * x[c] * x[0]);
+      }
+  u.update_ghost_values();
   MultithreadInfo::set_thread_limit(1);
   op.apply(u, force);
   MultithreadInfo::set_thread_limit(2);
   op.apply(u, force_2);
+
+  TrilinosWrappers::SparseMatrix matrix;
+  op.assemble(matrix);
+  const IndexSet               &owned = dof_handler.locally_owned_dofs();
+  TrilinosWrappers::MPI::Vector u_owned(owned, comm), ku(owned, comm);
+  for (const auto dof : owned)
+    u_owned[dof] = u[dof];
+  u_owned.compress(VectorOperation::insert);
+  matrix.vmult(ku, u_owned);
+  double diff2 = 0, norm2 = 0;
+  for (const auto dof : owned)
+    {
+      diff2 += std::pow(ku[dof] + force[dof], 2);
+      norm2 += std::pow(force[dof], 2);
+    }
+  diff2 = Utilities::MPI::sum(diff2, comm);
+  norm2 = Utilities::MPI::sum(norm2, comm);
+  typename Operators::BondOperator<dim>::VectorType diagonal;
+  op.initialize_dof_vector(diagonal);
+  op.compute_diagonal(diagonal);
+  double diag_diff = 0, diag_max = 0;
+  for (const auto dof : owned)
+    {
+      diag_diff =
+        std::max(diag_diff, std::abs(diagonal[dof] - matrix.el(dof, dof)));
+      diag_max = std::max(diag_max, std::abs(matrix.el(dof, dof)));
+    }
+  diag_diff      = Utilities::MPI::max(diag_diff, comm);
+  diag_max       = Utilities::MPI::max(diag_max, comm);
   bool identical = true;
   for (unsigned int k = 0; k < force.locally_owned_size(); ++k)
     identical = identical && force.local_element(k) == force_2.local_element(k);
@@ -338,6 +386,12 @@ check(const std::string &influence,
                      "mu Laplace u + (c_K/d + 2 mu) grad div u to <= 1e-10 "
                      "of the largest force: "
                   << (worst_navier <= 1e-10 * largest ? "yes" : "NO") << '\n';
+      std::cout << "  K u = -F(u) on a smooth field to <= 1e-12 relative "
+                   "(assembled against matrix-free): "
+                << (diff2 <= 1e-24 * norm2 && norm2 > 0 ? "yes" : "NO") << '\n'
+                << "  diagonal (compute_diagonal()) = diag(K) to <= 1e-12 "
+                   "relative: "
+                << (diag_diff <= 1e-12 * diag_max ? "yes" : "NO") << '\n';
       std::cout << "  1 and 2 threads give bitwise the same forces: "
                 << (identical ? "yes" : "NO") << '\n';
     }

@@ -285,8 +285,8 @@ namespace PeriDEAL
        * m the continuum weighted volume); the other nodes' dilatations stay
        * standard. Linear kinematics and no failure only (the bond-based rows
        * also run beside the nonlinear passes of standard nodes); on a
-       * uniform lattice; apply() evaluates the rows, and assemble() for
-       * bond-based models; the operator is not symmetric. An ill-conditioned
+       * uniform lattice; apply() and assemble() both evaluate the rows; the
+       * operator is not symmetric. An ill-conditioned
        * bulk cloud falls back to the standard scheme everywhere or throws, as
        * @p settings say. Nodes flagged in @p standard (owned and ghost
        * indices; empty: none) keep the standard scheme (the fixed region
@@ -540,6 +540,8 @@ namespace PeriDEAL
         /// State-based models: the dilatation row T_k (theta_w[c][k]) and
         /// the dilatation force row V K_k (kf[c][k]), in the same order.
         std::array<std::vector<double>, dim> theta_w, kf;
+        /// Per stencil offset: its index in the row, or -1.
+        std::vector<int> of_stencil_index;
       };
 
       /// State-based models with collocation: 1 for the nodes (owned and
