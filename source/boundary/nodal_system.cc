@@ -47,10 +47,19 @@ namespace PeriDEAL
                                                    std::vector<bool>());
           std::ostringstream line;
           line << "quadrature '" << context.quadrature_scheme_name
-               << "': order " << settings->order << ", "
-               << collocation.n_collocation << " collocation nodes ("
-               << collocation.n_monomials << " monomials), cond(A) "
-               << std::setprecision(2) << std::scientific
+               << "': order " << settings->order << ", ";
+          if (collocation.per_node && collocation.n_collocation_nodes == 0)
+            line << "a row per node (irregular nodes), none fitted ("
+                 << collocation.n_monomials << " monomials), cond(A) up to ";
+          else if (collocation.per_node)
+            line << "a row per node (irregular nodes), "
+                 << collocation.n_collocation_min << " to "
+                 << collocation.n_collocation << " collocation nodes ("
+                 << collocation.n_monomials << " monomials), cond(A) up to ";
+          else
+            line << collocation.n_collocation << " collocation nodes ("
+                 << collocation.n_monomials << " monomials), cond(A) ";
+          line << std::setprecision(2) << std::scientific
                << collocation.condition << std::defaultfloat << "; "
                << collocation.n_collocation_nodes << " nodes by collocation, ";
           if (hybrid)

@@ -75,7 +75,15 @@ namespace PeriDEAL
 
       // Bucket grid: a neighbour's centre lies within horizon + half a cell
       // diameter, so the adjacent buckets hold every candidate.
-      const double reach  = horizon + 0.5 * nodes.max_cell_diameter();
+      // Nodes off their cells' centres (NodeSet::set_perturbation()) reach
+      // that much farther: the largest offset of any node, on every
+      // process.
+      double shift = 0;
+      for (unsigned int j = 0; j < n; ++j)
+        shift =
+          std::max(shift, nodes[j].location.distance(nodes[j].cell.center()));
+      shift              = Utilities::MPI::max(shift, nodes.get_communicator());
+      const double reach = horizon + 0.5 * nodes.max_cell_diameter() + shift;
       const double bucket = reach;
       auto         key_of = [&](const Point<dim> &p) {
         std::array<int, dim> key;

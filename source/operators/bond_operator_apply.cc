@@ -245,7 +245,7 @@ namespace PeriDEAL
       // (set_collocation_energy()), node by node on the threads; summed
       // below in node order.
       std::vector<double> bond_energy;
-      if (bond_energy_at_collocation_nodes && !collocation_chunks.empty())
+      if (bond_energy_at_collocation_nodes && has_collocation_rows())
         {
           bond_energy.assign(nodes->n_owned(), 0.);
           parallel::apply_to_subranges(
@@ -294,7 +294,7 @@ namespace PeriDEAL
           if (state_based)
             nonlinear_dilatation_pass<true>();
           nonlinear_force_pass<true, with_energy>();
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
         }
       else if (with_failure)
@@ -302,7 +302,7 @@ namespace PeriDEAL
           if (state_based)
             nonlinear_dilatation_pass<false>();
           nonlinear_force_pass<false, with_energy>();
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
         }
       else
@@ -310,7 +310,7 @@ namespace PeriDEAL
           if (state_based)
             dilatation_pass();
           force_pass();
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
         }
       double *values = force.begin();
@@ -453,6 +453,21 @@ namespace PeriDEAL
         }
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
+          if (is_collocation_node(i))
+            {
+              // A row of its own (irregular nodes): K_ii = sum_k V W_k.
+              const int r = node_row_of[i];
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  double sum = 0;
+                  for (std::size_t e = node_rows.first[r];
+                       e < node_rows.first[r + 1];
+                       ++e)
+                    sum += node_rows.w[(e * dim + c) * dim + c];
+                  diagonal.local_element(layout.vector_index[i] + c) = sum;
+                }
+              continue;
+            }
           const Point<dim> &x      = (*nodes)[i].location;
           const double      volume = (*nodes)[i].volume();
           const double      s_i    = s_slot[layout.slot[i]];

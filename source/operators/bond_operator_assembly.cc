@@ -196,7 +196,15 @@ namespace PeriDEAL
         touch(key_i);
         const auto touch_theta = [&](const std::ptrdiff_t key_q,
                                      const double *) { touch(key_q); };
-        if (lps_rows && is_collocation_node(i))
+        if (!node_rows.node.empty() && is_collocation_node(i))
+          {
+            // A row of its own (irregular nodes; keys are node indices).
+            const int r = node_row_of[i];
+            for (std::size_t e = node_rows.first[r]; e < node_rows.first[r + 1];
+                 ++e)
+              touch(layout.node_of_slot(node_rows.neighbor_slot[e]));
+          }
+        else if (lps_rows && is_collocation_node(i))
           // A collocation row of LPS: its cloud and their dilatation rows.
           for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
             {
@@ -440,7 +448,7 @@ namespace PeriDEAL
       // (LPS collocation rows differ where a cloud node's dilatation is
       // standard: formed row by row.)
       const auto shared_collocation_row = [&](const unsigned int i) {
-        return is_collocation_node(i) && !lps_rows;
+        return is_collocation_node(i) && !lps_rows && node_rows.node.empty();
       };
       const auto shared_row = [&](const unsigned int i) {
         return layout.use_lattice && (bulk_row[i] || shared_collocation_row(i));
@@ -479,6 +487,15 @@ namespace PeriDEAL
           {
             used[i] |= 1;
             mark_neighbours(i, 2);
+            // A row of its own (irregular nodes) has no work list.
+            if (!node_rows.node.empty() && is_collocation_node(i))
+              {
+                const int r = node_row_of[i];
+                for (std::size_t e = node_rows.first[r];
+                     e < node_rows.first[r + 1];
+                     ++e)
+                  used[layout.node_of_slot(node_rows.neighbor_slot[e])] |= 2;
+              }
           }
         if (state_based)
           for (unsigned int j = 0; j < n; ++j)
@@ -647,7 +664,26 @@ namespace PeriDEAL
               const auto &keys     = keys_of(i);
               if (!use_bulk && !fully_prescribed[i])
                 {
-                  if (lps_rows && is_collocation_node(i))
+                  if (!node_rows.node.empty() && is_collocation_node(i))
+                    {
+                      const int r = node_row_of[i];
+                      for (std::size_t e = node_rows.first[r];
+                           e < node_rows.first[r + 1];
+                           ++e)
+                        {
+                          const unsigned int j =
+                            layout.node_of_slot(node_rows.neighbor_slot[e]);
+                          for (unsigned int p = 0; p < dim; ++p)
+                            for (unsigned int q = 0; q < dim; ++q)
+                              {
+                                const double w =
+                                  node_rows.w[(e * dim + p) * dim + q];
+                                scratch[j][p][q] += w;
+                                scratch[i][p][q] -= w;
+                              }
+                        }
+                    }
+                  else if (lps_rows && is_collocation_node(i))
                     collocation_lps_values(i, scratch);
                   else
                     row_values(i, scratch);

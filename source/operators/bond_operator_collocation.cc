@@ -28,10 +28,10 @@ namespace PeriDEAL
       const std::vector<bool>               &standard)
     {
       const MPI_Comm comm = nodes->get_communicator();
-      AssertThrow(layout.use_lattice,
-                  ExcMessage("The collocation quadrature needs a uniform grid "
-                             "of cubes (one shared bulk row); this mesh is "
-                             "not one. Use 'Quadrature/Scheme = standard'."));
+      node_rows           = NodeRows();
+      node_row_of.clear();
+      if (!layout.use_lattice)
+        return use_collocation_per_node(settings, standard);
       AssertThrow(!state_based || (!finite && !with_failure),
                   ExcMessage("The collocation rows of state-based models are "
                              "built for linear kinematics without failure "
@@ -275,7 +275,7 @@ namespace PeriDEAL
     std::size_t
     BondOperator<dim>::n_collocation_nodes() const
     {
-      std::size_t count = 0;
+      std::size_t count = node_rows.node.size();
       for (const Chunk &chunk : collocation_chunks)
         count += chunk.length;
       return Utilities::MPI::sum(count, nodes->get_communicator());
@@ -286,6 +286,11 @@ namespace PeriDEAL
     void
     BondOperator<dim>::collocation_pass() const
     {
+      if (!node_rows.node.empty())
+        {
+          node_rows_pass();
+          return;
+        }
       const std::size_t n_offsets = collocation_row.offset.size();
       const bool        lps       = !collocation_theta_chunks.empty();
       parallel::apply_to_subranges(
@@ -346,8 +351,23 @@ namespace PeriDEAL
     Tensor<1, dim>
     BondOperator<dim>::collocation_force(const std::size_t si) const
     {
-      // The operations of collocation_pass(), lane by lane.
       Tensor<1, dim> f;
+      if (!node_rows.node.empty())
+        {
+          // The operations of node_rows_pass().
+          const int r = node_row_of[layout.node_of_slot(si)];
+          for (std::size_t e = node_rows.first[r]; e < node_rows.first[r + 1];
+               ++e)
+            for (unsigned int b = 0; b < dim; ++b)
+              {
+                const double du =
+                  u_slot[b][node_rows.neighbor_slot[e]] - u_slot[b][si];
+                for (unsigned int a = 0; a < dim; ++a)
+                  f[a] += node_rows.w[(e * dim + a) * dim + b] * du;
+              }
+          return f;
+        }
+      // The operations of collocation_pass(), lane by lane.
       for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
         for (unsigned int b = 0; b < dim; ++b)
           {

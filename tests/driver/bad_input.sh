@@ -254,6 +254,24 @@ group_collocation() {
     "Invalid value '5, 5, 6, 6' for the parameter 'Quadrature/hybrid/Standard boxes'"
   expect_error "$bb; s/set Dimension = 2/set Dimension = 2\nsubsection Quadrature\n  subsection collocation\n    set Order = 4\n  end\nend/" \
     "The entry 'Quadrature/collocation/Order' (line 4) belongs to 'collocation', but 'Quadrature/Scheme' selects 'standard'"
+  # Irregular nodes ('Geometry/Node perturbation'): a fraction outside
+  # [0, 0.5), a seed without a perturbation, and the schemes and models
+  # that need the nodes at the cell centres so far.
+  perturb() { printf 's/  set Subdivisions = 10, 10/  set Subdivisions = 10, 10\\n%s/' "$1"; }
+  expect_error "$(perturb '  set Node perturbation = 0.5')" \
+    "Invalid value '0.5' for the parameter 'Geometry/Node perturbation': the offset of a node from its cell's centre, as a fraction of the cell's side, lies in [0, 0.5)"
+  expect_error "$(perturb '  set Node perturbation = -0.1')" \
+    "Invalid value '-0.1' for the parameter 'Geometry/Node perturbation'"
+  expect_error "$(perturb '  set Random seed = 3')" \
+    "Invalid value '3' for the parameter 'Geometry/Random seed': this entry has no effect here: it seeds 'Geometry/Node perturbation', which is 0"
+  expect_error "$(perturb '  set Node perturbation = 0.3'); $(col '' "$gmres")" \
+    "Invalid value '0.3' for the parameter 'Geometry/Node perturbation': the collocation rows of the state-based model are built for nodes at the cell centres so far"
+  sed "$bb; $(perturb '  set Node perturbation = 0.3'); $(col '' "$gmres")" base.prm > perturbed.prm
+  expect_valid 1 perturbed.prm "collocation, bond-based, perturbed nodes" out/solution_0.pvtu
+  rm -rf out
+  sed "$(perturb '  set Node perturbation = 0.3')" base.prm > perturbed_standard.prm
+  expect_valid 1 perturbed_standard.prm "standard LPS, perturbed nodes" out/solution_0.pvtu
+  rm -rf out
 }
 
 # Overflowing moduli, output names that meet, entries that do nothing.

@@ -207,6 +207,11 @@ group_hybrid() {
   sed "$(hy '')" base.prm > hybrid.prm
   expect_valid 1 hybrid.prm "the hybrid scheme" out/solution.pvd
   rm -rf out
+  expect_error "$(hy ''); s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.2/" \
+    "Invalid value '0.2' for the parameter 'Geometry/Node perturbation': the hybrid scheme of explicit dynamics shares one collocation row over a uniform grid"
+  sed "s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.2/" base.prm > perturbed.prm
+  expect_valid 1 perturbed.prm "explicit dynamics on perturbed nodes (standard scheme)" out/solution.pvd
+  rm -rf out
   for np in 1 2; do
     expect_error "$(hy '  subsection hybrid\n    set Critical stretch fraction = 1\n  end')" \
       "Invalid value '1' for the parameter 'Quadrature/hybrid/Critical stretch fraction': alpha of Eq. 65 lies strictly between 0 and 1" $np

@@ -254,7 +254,12 @@ namespace PeriDEAL
         /// The shared bulk row: collocation nodes n_c (the node itself
         /// included), monomials n_p, cond_2(A).
         unsigned int n_collocation = 0, n_monomials = 0;
-        double       condition = 0;
+        /// Rows per node (irregular nodes): n_collocation is then the
+        /// largest cloud, n_collocation_min the smallest, and condition
+        /// the largest cond_2(A) of the nodes' clouds.
+        bool         per_node          = false;
+        unsigned int n_collocation_min = 0;
+        double       condition         = 0;
         /// The largest eigenvalue of the bulk row's Fourier symbol over
         /// the magnitude of the most negative one
         /// (Quadrature::largest_symbol_eigenvalue()): > 0 means growing
@@ -286,8 +291,13 @@ namespace PeriDEAL
        * standard. Linear kinematics and no failure only (the bond-based rows
        * also run beside the nonlinear passes of standard nodes); on a
        * uniform lattice; apply() and assemble() both evaluate the rows; the
-       * operator is not symmetric. An ill-conditioned
-       * bulk cloud falls back to the standard scheme everywhere or throws, as
+       * operator is not symmetric. Off the lattice (irregular nodes,
+       * bond-based models) every owned node whose ball lies in the body and
+       * its layers (its cells' exact partial volumes fill the ball) gets a
+       * row of its own, fitted to its own cloud; an ill-conditioned cloud
+       * makes its node standard (counted) or throws, as @p settings say. An
+       * ill-conditioned bulk cloud falls back to the standard scheme everywhere
+       * or throws, as
        * @p settings say. Nodes flagged in @p standard (owned and ghost
        * indices; empty: none) keep the standard scheme (the fixed region
        * of the hybrid scheme). Collective (the report's counts are sums over
@@ -544,6 +554,30 @@ namespace PeriDEAL
         std::vector<int> of_stencil_index;
       };
 
+      /**
+       * Off the lattice (irregular nodes, 'Geometry/Node perturbation'):
+       * one collocation row per node, fitted to its own cloud
+       * (use_collocation_per_node()): the nodes with a row, the entries of
+       * row r in [first[r], first[r + 1]), each a neighbour slot and the
+       * d x d block V W_k (dim * dim doubles).
+       */
+      struct NodeRows
+      {
+        std::vector<unsigned int> node;
+        std::vector<std::size_t>  first{0};
+        std::vector<std::size_t>  neighbor_slot;
+        std::vector<double>       w;
+      };
+      NodeRows         node_rows;
+      std::vector<int> node_row_of;
+
+      /// Whether any node is evaluated by a collocation row.
+      bool
+      has_collocation_rows() const
+      {
+        return !collocation_chunks.empty() || !node_rows.node.empty();
+      }
+
       /// State-based models with collocation: 1 for the nodes (owned and
       /// ghost) whose dilatation comes from the collocation row, and the
       /// chunks of their slots; the plain dilatation theta of every node
@@ -748,6 +782,16 @@ namespace PeriDEAL
       /// (bond_operator_collocation.cc).
       void
       collocation_pass() const;
+
+      /// use_collocation() off the lattice: a row per node
+      /// (bond_operator_collocation_rows.cc).
+      CollocationReport
+      use_collocation_per_node(const Quadrature::CollocationSettings &settings,
+                               const std::vector<bool>               &standard);
+
+      /// The forces of the nodes with a row of their own into f_slot.
+      void
+      node_rows_pass() const;
 
       /// State-based models: the dilatations of the nodes of
       /// collocation_theta_chunks into theta_slot and t_slot (s theta),
