@@ -68,7 +68,9 @@ namespace PeriDEAL
           line << collocation.n_cut_nodes
                << " standard (ball cut by the surface), "
                << collocation.n_ill_conditioned
-               << " standard (ill-conditioned cloud)";
+               << (collocation.per_node ?
+                     " standard (ill-conditioned or indefinite cloud)" :
+                     " standard (ill-conditioned cloud)");
           context.print_progress(line.str());
           if (collocation.symbol > 1e-10)
             context.pcout

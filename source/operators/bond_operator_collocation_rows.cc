@@ -133,7 +133,6 @@ namespace PeriDEAL
       double       worst     = 0;
       unsigned int smallest  = std::numeric_limits<unsigned int>::max(),
                    largest   = 0;
-      int worst_node         = -1;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
           ++counts[status[i]];
@@ -143,10 +142,24 @@ namespace PeriDEAL
               largest  = std::max(largest, cloud_size[i]);
             }
           if ((status[i] == 0 || status[i] == 3) && !(condition[i] <= worst))
-            {
-              worst      = condition[i];
-              worst_node = i;
-            }
+            worst = condition[i];
+        }
+      // An order-2 row with a non-positive diagonal comes from a badly
+      // shaped cloud (a heavily perturbed one): it falls back, or stops the
+      // run, like an ill-conditioned one. Higher orders with such rows are
+      // the order's fault (doc/collocation.md Sect. 7) and stop the run.
+      int failed_node = -1;
+      for (unsigned int i = 0; i < n_owned; ++i)
+        {
+          if (settings.order == 2 && status[i] == 4)
+            status[i] = 3;
+          if (status[i] == 3 && failed_node < 0)
+            failed_node = i;
+        }
+      if (settings.order == 2)
+        {
+          counts[3] += counts[4];
+          counts[4] = 0;
         }
       for (auto &count : counts)
         count = Utilities::MPI::sum(count, comm);
@@ -158,33 +171,35 @@ namespace PeriDEAL
       report.n_collocation       = Utilities::MPI::max(largest, comm);
       report.n_collocation_min   = Utilities::MPI::min(smallest, comm);
       report.per_node            = true;
-      // The node of the worst cloud, for the error below.
+      // A node that failed (the first of the lowest process that has
+      // one), for the error below.
       std::ostringstream where;
-      if (worst_node >= 0 && worst == report.condition)
-        where << "(" << (*nodes)[worst_node].location << ")";
+      if (failed_node >= 0)
+        where << "(" << (*nodes)[failed_node].location << "), cond(A) "
+              << format_number(condition[failed_node]);
       std::string position;
       for (const auto &w : Utilities::MPI::all_gather(comm, where.str()))
         if (position.empty())
           position = w;
-      AssertThrow(counts[3] == 0 || settings.fall_back,
-                  ExcInvalidInput(
-                    "Quadrature/collocation/Ill-conditioned clouds",
-                    "error",
-                    std::to_string(counts[3]) +
-                      " nodes have a collocation cloud with cond(A) > 1e12 "
-                      "(the worst " +
-                      format_number(report.condition) + ", at the node " +
-                      position +
-                      "); choose another 'Collocation nodes' or 'Order', a "
-                      "smaller 'Geometry/Node perturbation', or 'fall back' "
-                      "to the standard scheme at those nodes"));
+      AssertThrow(
+        counts[3] == 0 || settings.fall_back,
+        ExcInvalidInput("Quadrature/collocation/Ill-conditioned clouds",
+                        "error",
+                        std::to_string(counts[3]) +
+                          " nodes have a collocation cloud with cond(A) > 1e12 "
+                          "or a row with a non-positive diagonal (one at " +
+                          position +
+                          "); choose another 'Collocation nodes', a smaller "
+                          "'Geometry/Node perturbation', or 'fall back' to the "
+                          "standard scheme at those nodes"));
       AssertThrow(
         counts[4] == 0,
         ExcInvalidInput("Quadrature/collocation/Order",
                         std::to_string(settings.order),
                         std::to_string(counts[4]) +
-                          " nodes have a collocation row with a non-positive "
-                          "diagonal (the node weighs against its neighbours, "
+                          " nodes have a collocation row of this order with "
+                          "a non-positive diagonal (the node weighs against "
+                          "its neighbours, "
                           "doc/collocation.md Sect. 7): the static operator is "
                           "indefinite. Use 'Order = 2'"));
 
