@@ -191,22 +191,24 @@ namespace PeriDEAL
       const double operator_mb =
         Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
                             context.communicator);
-      context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                    << context.elapsed() << " s] matrix-free operator: "
-                    << context.dof_handler.n_dofs() << " DoFs, " << n_stencil
-                    << " nodes on the shared stencil"
-                    << (collocation.n_collocation_nodes > 0 ?
-                          " (" +
-                            std::to_string(collocation.n_collocation_nodes) +
-                            " of them by collocation)" :
-                          std::string())
-                    << ", " << context.summary.n_nodes - n_stencil
-                    << " on lists, " << context.summary.n_constrained_nodes
-                    << " nodes in Dirichlet layers; " << visits
-                    << " bond visits per application, " << std::setprecision(1)
-                    << operator_mb << " MB, " << MultithreadInfo::n_threads()
-                    << " thread(s) per process" << std::defaultfloat
-                    << std::endl;
+      context.pcout
+        << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+        << context.elapsed()
+        << " s] matrix-free operator: " << context.dof_handler.n_dofs()
+        << " DoFs, "
+        << (collocation.per_node ?
+              std::to_string(n_stencil) +
+                " nodes by a collocation row of their own" :
+              std::to_string(n_stencil) + " nodes on the shared stencil" +
+                (collocation.n_collocation_nodes > 0 ?
+                   " (" + std::to_string(collocation.n_collocation_nodes) +
+                     " of them by collocation)" :
+                   std::string()))
+        << ", " << context.summary.n_nodes - n_stencil << " on lists, "
+        << context.summary.n_constrained_nodes << " nodes in Dirichlet layers; "
+        << visits << " bond visits per application, " << std::setprecision(1)
+        << operator_mb << " MB, " << MultithreadInfo::n_threads()
+        << " thread(s) per process" << std::defaultfloat << std::endl;
 
       std::vector<std::vector<bool>> constant_modes;
       if (context.linear_solver.preconditioner().needs_local_matrix())

@@ -382,7 +382,7 @@ namespace PeriDEAL
       std::size_t visits = layout.bond_visits;
       for (const Chunk &chunk : collocation_chunks)
         visits += chunk.length * collocation_row.offset.size();
-      return visits;
+      return visits + node_rows.neighbor_slot.size();
     }
 
 
