@@ -214,9 +214,17 @@ namespace PeriDEAL
       if (context.linear_solver.preconditioner().needs_local_matrix())
         {
           TimerOutput::Scope scope(context.timer, "preconditioner setup");
+          // Nodes perturbed in their cells: the preconditioner's finite
+          // elements live on the cells, whose centres may still form a
+          // lattice.
+          Discretization::Lattice<dim> cells;
+          if (!context.neighbor_lists.lattice().is_uniform())
+            cells.reinit(context.nodes, true);
           Operators::LocalElasticityOperator<dim>::assemble(
             context.nodes,
-            context.neighbor_lists.lattice(),
+            context.neighbor_lists.lattice().is_uniform() ?
+              context.neighbor_lists.lattice() :
+              cells,
             context.model,
             constraints,
             local_matrix);
