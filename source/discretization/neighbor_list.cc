@@ -108,6 +108,14 @@ namespace PeriDEAL
                                            grid.coordinates(i)[d]);
             return table->beta(offset);
           }
+        // Nodes moved off their cells' centres: the exact fraction of j's
+        // cell in i's ball differs from that of i's cell in j's ball, so the
+        // bond takes their mean (the same at both ends: the pair forces
+        // stay equal and opposite, the operator symmetric).
+        if (shift > 0)
+          return 0.5 *
+                 (algorithm.weight(nodes[i].location, horizon, nodes[j].cell) +
+                  algorithm.weight(nodes[j].location, horizon, nodes[i].cell));
         return algorithm.weight(nodes[i].location, horizon, nodes[j].cell);
       };
 
