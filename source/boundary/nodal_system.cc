@@ -47,10 +47,19 @@ namespace PeriDEAL
                                                    std::vector<bool>());
           std::ostringstream line;
           line << "quadrature '" << context.quadrature_scheme_name
-               << "': order " << settings->order << ", "
-               << collocation.n_collocation << " collocation nodes ("
-               << collocation.n_monomials << " monomials), cond(A) "
-               << std::setprecision(2) << std::scientific
+               << "': order " << settings->order << ", ";
+          if (collocation.per_node && collocation.n_collocation_nodes == 0)
+            line << "a row per node (irregular nodes), none fitted ("
+                 << collocation.n_monomials << " monomials), cond(A) up to ";
+          else if (collocation.per_node)
+            line << "a row per node (irregular nodes), "
+                 << collocation.n_collocation_min << " to "
+                 << collocation.n_collocation << " collocation nodes ("
+                 << collocation.n_monomials << " monomials), cond(A) up to ";
+          else
+            line << collocation.n_collocation << " collocation nodes ("
+                 << collocation.n_monomials << " monomials), cond(A) ";
+          line << std::setprecision(2) << std::scientific
                << collocation.condition << std::defaultfloat << "; "
                << collocation.n_collocation_nodes << " nodes by collocation, ";
           if (hybrid)
@@ -59,7 +68,9 @@ namespace PeriDEAL
           line << collocation.n_cut_nodes
                << " standard (ball cut by the surface), "
                << collocation.n_ill_conditioned
-               << " standard (ill-conditioned cloud)";
+               << (collocation.per_node ?
+                     " standard (ill-conditioned or indefinite cloud)" :
+                     " standard (ill-conditioned cloud)");
           context.print_progress(line.str());
           if (collocation.symbol > 1e-10)
             context.pcout
@@ -180,30 +191,40 @@ namespace PeriDEAL
       const double operator_mb =
         Utilities::MPI::sum(bond_operator.memory_consumption() / 1048576.,
                             context.communicator);
-      context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                    << context.elapsed() << " s] matrix-free operator: "
-                    << context.dof_handler.n_dofs() << " DoFs, " << n_stencil
-                    << " nodes on the shared stencil"
-                    << (collocation.n_collocation_nodes > 0 ?
-                          " (" +
-                            std::to_string(collocation.n_collocation_nodes) +
-                            " of them by collocation)" :
-                          std::string())
-                    << ", " << context.summary.n_nodes - n_stencil
-                    << " on lists, " << context.summary.n_constrained_nodes
-                    << " nodes in Dirichlet layers; " << visits
-                    << " bond visits per application, " << std::setprecision(1)
-                    << operator_mb << " MB, " << MultithreadInfo::n_threads()
-                    << " thread(s) per process" << std::defaultfloat
-                    << std::endl;
+      context.pcout
+        << "[" << std::setw(8) << std::fixed << std::setprecision(2)
+        << context.elapsed()
+        << " s] matrix-free operator: " << context.dof_handler.n_dofs()
+        << " DoFs, "
+        << (collocation.per_node ?
+              std::to_string(n_stencil) +
+                " nodes by a collocation row of their own" :
+              std::to_string(n_stencil) + " nodes on the shared stencil" +
+                (collocation.n_collocation_nodes > 0 ?
+                   " (" + std::to_string(collocation.n_collocation_nodes) +
+                     " of them by collocation)" :
+                   std::string()))
+        << ", " << context.summary.n_nodes - n_stencil << " on lists, "
+        << context.summary.n_constrained_nodes << " nodes in Dirichlet layers; "
+        << visits << " bond visits per application, " << std::setprecision(1)
+        << operator_mb << " MB, " << MultithreadInfo::n_threads()
+        << " thread(s) per process" << std::defaultfloat << std::endl;
 
       std::vector<std::vector<bool>> constant_modes;
       if (context.linear_solver.preconditioner().needs_local_matrix())
         {
           TimerOutput::Scope scope(context.timer, "preconditioner setup");
+          // Nodes perturbed in their cells: the preconditioner's finite
+          // elements live on the cells, whose centres may still form a
+          // lattice.
+          Discretization::Lattice<dim> cells;
+          if (!context.neighbor_lists.lattice().is_uniform())
+            cells.reinit(context.nodes, true);
           Operators::LocalElasticityOperator<dim>::assemble(
             context.nodes,
-            context.neighbor_lists.lattice(),
+            context.neighbor_lists.lattice().is_uniform() ?
+              context.neighbor_lists.lattice() :
+              cells,
             context.model,
             constraints,
             local_matrix);

@@ -11,7 +11,7 @@ namespace PeriDEAL
   {
     template <int dim>
     void
-    Lattice<dim>::reinit(const NodeSet<dim> &nodes)
+    Lattice<dim>::reinit(const NodeSet<dim> &nodes, const bool at_cell_centres)
     {
       const MPI_Comm comm = nodes.get_communicator();
       coords.clear();
@@ -28,7 +28,9 @@ namespace PeriDEAL
             const double side = node.cell.side_length(d);
             min_side          = std::min(min_side, side);
             max_side          = std::max(max_side, side);
-            lowest[d]         = std::min(lowest[d], node.location[d]);
+            lowest[d]         = std::min(lowest[d],
+                                 at_cell_centres ? node.cell.center()[d] :
+                                                           node.location[d]);
           }
       min_side = Utilities::MPI::min(min_side, comm);
       max_side = Utilities::MPI::max(max_side, comm);
@@ -46,8 +48,11 @@ namespace PeriDEAL
           for (unsigned int i = 0; i < nodes.size() && on_lattice; ++i)
             for (unsigned int d = 0; d < dim; ++d)
               {
-                const double x = (nodes[i].location[d] - lowest[d]) / h;
-                coords[i][d]   = std::llround(x);
+                const double x = ((at_cell_centres ? nodes[i].cell.center()[d] :
+                                                     nodes[i].location[d]) -
+                                  lowest[d]) /
+                                 h;
+                coords[i][d] = std::llround(x);
                 on_lattice =
                   on_lattice && std::abs(x - double(coords[i][d])) < 1e-9;
               }

@@ -75,7 +75,15 @@ namespace PeriDEAL
 
       // Bucket grid: a neighbour's centre lies within horizon + half a cell
       // diameter, so the adjacent buckets hold every candidate.
-      const double reach  = horizon + 0.5 * nodes.max_cell_diameter();
+      // Nodes off their cells' centres (NodeSet::set_perturbation()) reach
+      // that much farther: the largest offset of any node, on every
+      // process.
+      double shift = 0;
+      for (unsigned int j = 0; j < n; ++j)
+        shift =
+          std::max(shift, nodes[j].location.distance(nodes[j].cell.center()));
+      shift              = Utilities::MPI::max(shift, nodes.get_communicator());
+      const double reach = horizon + 0.5 * nodes.max_cell_diameter() + shift;
       const double bucket = reach;
       auto         key_of = [&](const Point<dim> &p) {
         std::array<int, dim> key;
@@ -100,6 +108,14 @@ namespace PeriDEAL
                                            grid.coordinates(i)[d]);
             return table->beta(offset);
           }
+        // Nodes moved off their cells' centres: the exact fraction of j's
+        // cell in i's ball differs from that of i's cell in j's ball, so the
+        // bond takes their mean (the same at both ends: the pair forces
+        // stay equal and opposite, the operator symmetric).
+        if (shift > 0)
+          return 0.5 *
+                 (algorithm.weight(nodes[i].location, horizon, nodes[j].cell) +
+                  algorithm.weight(nodes[j].location, horizon, nodes[i].cell));
         return algorithm.weight(nodes[i].location, horizon, nodes[j].cell);
       };
 

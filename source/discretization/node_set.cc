@@ -89,6 +89,19 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    NodeSet<dim>::set_perturbation(const double        fraction,
+                                   const std::uint64_t seed)
+    {
+      AssertThrow(fraction >= 0 && fraction < 0.5,
+                  ExcMessage("NodeSet::set_perturbation: the fraction must "
+                             "lie in [0, 0.5)."));
+      perturbation      = fraction;
+      perturbation_seed = seed;
+    }
+
+
+    template <int dim>
+    void
     NodeSet<dim>::reinit(const DoFHandler<dim> &dof_handler,
                          const double           coupling_range)
     {
@@ -110,6 +123,28 @@ namespace PeriDEAL
             Node<dim> node;
             node.cell     = cell_box(*cell);
             node.location = node.cell.center();
+            if (perturbation > 0)
+              {
+                // A hash of the seed, the CellId and the direction,
+                // uniform in [-1, 1): the same offset on every partition.
+                std::uint64_t key = 14695981039346656037ULL;
+                for (const char c : cell->id().to_string())
+                  key =
+                    (key ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    std::uint64_t z =
+                      key ^ (perturbation_seed * 0x9e3779b97f4a7c15ULL) ^
+                      ((d + 1) * 0xbf58476d1ce4e5b9ULL);
+                    // splitmix64's finaliser.
+                    z                 = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+                    z                 = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+                    z                 = z ^ (z >> 31);
+                    const double unit = (z >> 11) * 0x1.0p-53; // [0, 1)
+                    node.location[d] +=
+                      perturbation * node.cell.side_length(d) * (2 * unit - 1);
+                  }
+              }
             cell->get_dof_indices(dof_indices);
             for (unsigned int i = 0; i < dim; ++i)
               node.dofs[fe.system_to_component_index(i).first] = dof_indices[i];

@@ -33,6 +33,8 @@ namespace PeriDEAL
     BondOperator<dim>::dilatation_pass() const
     {
       const std::size_t n_offsets = layout.stencil_offset.size();
+      // The plain dilatations too, for the collocation rows of LPS.
+      const bool store_theta = !collocation_theta_chunks.empty();
       // The uniform bulk: theta_i = sum_k g_k n_k . (u_{i+k} - u_i),
       // vectorised over a run of consecutive slots.
       parallel::apply_to_subranges(
@@ -71,6 +73,9 @@ namespace PeriDEAL
               const double s = stencil.node_factor;
               for (unsigned int l = 0; l < len; ++l)
                 t_slot[s0 + l] = s * theta[l];
+              if (store_theta)
+                for (unsigned int l = 0; l < len; ++l)
+                  theta_slot[s0 + l] = theta[l];
             }
         },
         LoopLayout<dim>::chunk_grain);
@@ -93,7 +98,11 @@ namespace PeriDEAL
                                 if (layout.use_lattice)
                                   theta *= list_theta_scale[i];
                                 t_slot[si] = s_slot[si] * theta;
+                                if (store_theta)
+                                  theta_slot[si] = theta;
                               });
+      if (store_theta)
+        collocation_dilatation_pass();
     }
 
 
@@ -236,7 +245,7 @@ namespace PeriDEAL
       // (set_collocation_energy()), node by node on the threads; summed
       // below in node order.
       std::vector<double> bond_energy;
-      if (bond_energy_at_collocation_nodes && !collocation_chunks.empty())
+      if (bond_energy_at_collocation_nodes && has_collocation_rows())
         {
           bond_energy.assign(nodes->n_owned(), 0.);
           parallel::apply_to_subranges(
@@ -285,7 +294,7 @@ namespace PeriDEAL
           if (state_based)
             nonlinear_dilatation_pass<true>();
           nonlinear_force_pass<true, with_energy>();
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
         }
       else if (with_failure)
@@ -293,7 +302,7 @@ namespace PeriDEAL
           if (state_based)
             nonlinear_dilatation_pass<false>();
           nonlinear_force_pass<false, with_energy>();
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
         }
       else
@@ -301,7 +310,7 @@ namespace PeriDEAL
           if (state_based)
             dilatation_pass();
           force_pass();
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
         }
       double *values = force.begin();
@@ -352,12 +361,44 @@ namespace PeriDEAL
             [&](const unsigned int begin, const unsigned int end) {
               for (unsigned int i = begin; i < end; ++i)
                 {
-                  if (is_collocation_node(i))
+                  if (is_collocation_node(i) && collocation_theta.empty())
                     {
                       // K_ii = V_i sum_k W_k (use_collocation()).
                       for (unsigned int c = 0; c < dim; ++c)
                         diagonal.local_element(layout.vector_index[i] + c) =
                           collocation_row.sum[c][c];
+                      continue;
+                    }
+                  if (is_collocation_node(i))
+                    {
+                      // LPS rows: K_ii = V sum_k W_k - V sum_k K_k (x)
+                      // d theta_{i+k}/du_i - V (sum_k K_k) (x) sum_k T_k,
+                      // with d theta_j/du_i = -T_k from j's row T, or
+                      // -g_k m_0/m_j n_k from its standard one.
+                      const std::size_t si = layout.slot[i];
+                      for (unsigned int c = 0; c < dim; ++c)
+                        {
+                          double w_sum = 0, k_sum = 0, t_sum = 0, coupled = 0;
+                          for (std::size_t k = 0;
+                               k < collocation_row.offset.size();
+                               ++k)
+                            {
+                              w_sum += collocation_row.w[c * dim + c][k];
+                              k_sum += collocation_row.kf[c][k];
+                              t_sum += collocation_row.theta_w[c][k];
+                              const unsigned int j = layout.node_of_slot(
+                                si + collocation_row.offset[k]);
+                              const unsigned int sk =
+                                collocation_row.stencil_index[k];
+                              const double d_theta =
+                                has_collocation_theta(j) ?
+                                  -collocation_row.theta_w[c][k] :
+                                  -stencil.g[sk] * m0 / m[j] * stencil.n[c][sk];
+                              coupled += collocation_row.kf[c][k] * d_theta;
+                            }
+                          diagonal.local_element(layout.vector_index[i] + c) =
+                            w_sum - coupled - k_sum * t_sum;
+                        }
                       continue;
                     }
                   const double   s_i = s_slot[layout.slot[i]];
@@ -382,10 +423,22 @@ namespace PeriDEAL
                               BondKernel::dilatation_stiffness(stencil.a[k],
                                                                s_i) *
                               n_c;
-                            diag[c] +=
-                              BondKernel::dilatation_stiffness(stencil.a[k],
-                                                               s_j) *
-                              n_c * n_c * stencil.g[k] * m0 / m[j];
+                            // d theta_j / du_i: the standard row of j, or
+                            // (LPS collocation) its row T at the offset
+                            // -k, -T_k (the row is odd), if i is in j's
+                            // cloud.
+                            if (!has_collocation_theta(j))
+                              diag[c] +=
+                                BondKernel::dilatation_stiffness(stencil.a[k],
+                                                                 s_j) *
+                                n_c * n_c * stencil.g[k] * m0 / m[j];
+                            else if (const int kc =
+                                       collocation_row.of_stencil_index[k];
+                                     kc >= 0)
+                              diag[c] +=
+                                BondKernel::dilatation_stiffness(stencil.a[k],
+                                                                 s_j) *
+                                n_c * collocation_row.theta_w[c][kc];
                           }
                       }
                   };
@@ -400,6 +453,21 @@ namespace PeriDEAL
         }
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
         {
+          if (is_collocation_node(i))
+            {
+              // A row of its own (irregular nodes): K_ii = sum_k V W_k.
+              const int r = node_row_of[i];
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  double sum = 0;
+                  for (std::size_t e = node_rows.first[r];
+                       e < node_rows.first[r + 1];
+                       ++e)
+                    sum += node_rows.w[(e * dim + c) * dim + c];
+                  diagonal.local_element(layout.vector_index[i] + c) = sum;
+                }
+              continue;
+            }
           const Point<dim> &x      = (*nodes)[i].location;
           const double      volume = (*nodes)[i].volume();
           const double      s_i    = s_slot[layout.slot[i]];

@@ -143,6 +143,42 @@ namespace PeriDEAL
         return layout.use_lattice && layout.on_stencil(j);
       };
 
+      // The dilatation row of node j (key key_j), d theta_j / du_q:
+      // f(key_q, gn) for every q != j with gn[c] = d theta_j / du_q[c]
+      // (d theta_j / du_j = -sum_q gn). The standard row (g_jq n_jq), or the
+      // collocation row T of a node whose dilatation comes from it (LPS
+      // collocation, use_collocation()).
+      const bool lps_rows = !collocation_theta.empty();
+      const auto theta_entries =
+        [&](const unsigned int j, const std::ptrdiff_t key_j, const auto &f) {
+          if (has_collocation_theta(j))
+            for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
+              {
+                double gn[dim];
+                for (unsigned int q = 0; q < dim; ++q)
+                  gn[q] = collocation_row.theta_w[q][k];
+                f(key_j + box_delta[collocation_row.stencil_index[k]], gn);
+              }
+          else if (on_full_stencil(j))
+            for (std::size_t k = 0; k < box_delta.size(); ++k)
+              f(key_j + box_delta[k], &stencil_gn[k * dim]);
+          else
+            for_each_bond_constants(j,
+                                    key_j,
+                                    box_delta,
+                                    [&](const std::size_t,
+                                        const std::ptrdiff_t key_q,
+                                        const double        *n_jq,
+                                        const double         g_jq,
+                                        const double,
+                                        const double) {
+                                      double gn[dim];
+                                      for (unsigned int q = 0; q < dim; ++q)
+                                        gn[q] = g_jq * n_jq[q];
+                                      f(key_q, gn);
+                                    });
+        };
+
       // The structure of row i: the keys of i, its neighbours and (state-
       // based) theirs, ascending.
       const auto row_structure = [&](const unsigned int          i,
@@ -158,34 +194,44 @@ namespace PeriDEAL
             }
         };
         touch(key_i);
-        for_each_bond_constants(
-          i,
-          key_i,
-          box_delta,
-          [&](const std::size_t    slot_j,
-              const std::ptrdiff_t key_j,
-              const double *,
-              const double,
-              const double,
-              const double) {
-            touch(key_j);
-            if (!state_based)
-              return;
-            const unsigned int j = layout.node_of_slot(slot_j);
-            if (on_full_stencil(j))
-              for (const auto delta : box_delta)
-                touch(key_j + delta);
-            else
-              for_each_bond_constants(j,
-                                      key_j,
-                                      box_delta,
-                                      [&](const std::size_t,
-                                          const std::ptrdiff_t key_q,
-                                          const double *,
-                                          const double,
-                                          const double,
-                                          const double) { touch(key_q); });
-          });
+        const auto touch_theta = [&](const std::ptrdiff_t key_q,
+                                     const double *) { touch(key_q); };
+        if (!node_rows.node.empty() && is_collocation_node(i))
+          {
+            // A row of its own (irregular nodes; keys are node indices).
+            const int r = node_row_of[i];
+            for (std::size_t e = node_rows.first[r]; e < node_rows.first[r + 1];
+                 ++e)
+              touch(layout.node_of_slot(node_rows.neighbor_slot[e]));
+          }
+        else if (lps_rows && is_collocation_node(i))
+          // A collocation row of LPS: its cloud and their dilatation rows.
+          for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
+            {
+              const std::ptrdiff_t key_j =
+                key_i + box_delta[collocation_row.stencil_index[k]];
+              touch(key_j);
+              theta_entries(layout.node_of_slot(layout.slot[i] +
+                                                collocation_row.offset[k]),
+                            key_j,
+                            touch_theta);
+            }
+        else
+          for_each_bond_constants(i,
+                                  key_i,
+                                  box_delta,
+                                  [&](const std::size_t    slot_j,
+                                      const std::ptrdiff_t key_j,
+                                      const double *,
+                                      const double,
+                                      const double,
+                                      const double) {
+                                    touch(key_j);
+                                    if (state_based)
+                                      theta_entries(layout.node_of_slot(slot_j),
+                                                    key_j,
+                                                    touch_theta);
+                                  });
         std::sort(keys.begin(), keys.end());
         for (const auto key : keys)
           mark[key] = 0;
@@ -229,39 +275,17 @@ namespace PeriDEAL
                 G_i[p] += g * n_ij[p];
                 t[p] = a_j * n_ij[p];
               }
-            const unsigned int j = layout.node_of_slot(slot_j);
-            if (on_full_stencil(j))
-              for (std::size_t k = 0; k < box_delta.size(); ++k)
-                {
-                  Tensor<2, dim> &target = block[key_j + box_delta[k]];
-                  const double   *gn     = &stencil_gn[k * dim];
-                  for (unsigned int q = 0; q < dim; ++q)
-                    {
-                      G_j[q] += gn[q];
-                      for (unsigned int p = 0; p < dim; ++p)
-                        target[p][q] += t[p] * gn[q];
-                    }
-                }
-            else
-              for_each_bond_constants(j,
-                                      key_j,
-                                      box_delta,
-                                      [&](const std::size_t,
-                                          const std::ptrdiff_t key_q,
-                                          const double        *n_jq,
-                                          const double         g_jq,
-                                          const double,
-                                          const double) {
-                                        Tensor<2, dim> &target = block[key_q];
-                                        for (unsigned int q = 0; q < dim; ++q)
-                                          {
-                                            const double gn = g_jq * n_jq[q];
-                                            G_j[q] += gn;
-                                            for (unsigned int p = 0; p < dim;
-                                                 ++p)
-                                              target[p][q] += t[p] * gn;
-                                          }
-                                      });
+            theta_entries(layout.node_of_slot(slot_j),
+                          key_j,
+                          [&](const std::ptrdiff_t key_q, const double *gn) {
+                            Tensor<2, dim> &target = block[key_q];
+                            for (unsigned int q = 0; q < dim; ++q)
+                              {
+                                G_j[q] += gn[q];
+                                for (unsigned int p = 0; p < dim; ++p)
+                                  target[p][q] += t[p] * gn[q];
+                              }
+                          });
             for (unsigned int p = 0; p < dim; ++p)
               for (unsigned int q = 0; q < dim; ++q)
                 block[key_j][p][q] -= t[p] * G_j[q];
@@ -285,6 +309,64 @@ namespace PeriDEAL
           for (unsigned int q = 0; q < dim; ++q)
             block[key_i][p][q] -= A[p] * G_i[q];
       };
+
+      // dF_i/du of a collocation row of LPS (use_collocation()):
+      //   F_i = sum_k [V W_k (u_{i+k} - u_i) + V K_k (theta_{i+k} - theta_i)].
+      const auto collocation_lps_values =
+        [&](const unsigned int i, std::vector<Tensor<2, dim>> &block) {
+          const std::ptrdiff_t key_i = centre;
+          const std::size_t    n_row = collocation_row.offset.size();
+          Tensor<1, dim>       k_sum;
+          for (std::size_t k = 0; k < n_row; ++k)
+            {
+              const std::ptrdiff_t key_j =
+                key_i + box_delta[collocation_row.stencil_index[k]];
+              for (unsigned int p = 0; p < dim; ++p)
+                {
+                  k_sum[p] += collocation_row.kf[p][k];
+                  for (unsigned int q = 0; q < dim; ++q)
+                    {
+                      const double w = collocation_row.w[p * dim + q][k];
+                      block[key_j][p][q] += w;
+                      block[key_i][p][q] -= w;
+                    }
+                }
+            }
+          const auto add_theta = [&](const unsigned int   j,
+                                     const std::ptrdiff_t key_j,
+                                     const double        *factor) {
+            // factor (x) d theta_j / du.
+            Tensor<1, dim> G_j;
+            theta_entries(j,
+                          key_j,
+                          [&](const std::ptrdiff_t key_q, const double *gn) {
+                            Tensor<2, dim> &target = block[key_q];
+                            for (unsigned int q = 0; q < dim; ++q)
+                              {
+                                G_j[q] += gn[q];
+                                for (unsigned int p = 0; p < dim; ++p)
+                                  target[p][q] += factor[p] * gn[q];
+                              }
+                          });
+            for (unsigned int p = 0; p < dim; ++p)
+              for (unsigned int q = 0; q < dim; ++q)
+                block[key_j][p][q] -= factor[p] * G_j[q];
+          };
+          for (std::size_t k = 0; k < n_row; ++k)
+            {
+              double factor[dim];
+              for (unsigned int p = 0; p < dim; ++p)
+                factor[p] = collocation_row.kf[p][k];
+              add_theta(layout.node_of_slot(layout.slot[i] +
+                                            collocation_row.offset[k]),
+                        key_i + box_delta[collocation_row.stencil_index[k]],
+                        factor);
+            }
+          double minus_sum[dim];
+          for (unsigned int p = 0; p < dim; ++p)
+            minus_sum[p] = -k_sum[p];
+          add_theta(i, key_i, minus_sum);
+        };
 
       // The positive diagonal kept in the row of a prescribed DoF: the
       // pairwise part of K_kk (the scale of K_kk, one pass over the bonds).
@@ -322,8 +404,11 @@ namespace PeriDEAL
               {
                 bool all = true;
                 for (unsigned int k = 0; k < stencil.g.size() && all; ++k)
-                  all = layout.on_stencil(layout.node_of_slot(
-                    layout.slot[i] + layout.stencil_offset[k]));
+                  {
+                    const unsigned int j = layout.node_of_slot(
+                      layout.slot[i] + layout.stencil_offset[k]);
+                    all = layout.on_stencil(j) && !has_collocation_theta(j);
+                  }
                 bulk_row[i] = all;
                 if (all && representative < 0)
                   representative = i;
@@ -341,7 +426,7 @@ namespace PeriDEAL
       // bulk rows: dF_i/du_j = V W_k at the node o_k, -V sum_k W_k at i.
       std::vector<Tensor<2, dim>> collocation_block;
       std::vector<std::uint32_t>  collocation_keys;
-      if (!collocation_row.offset.empty())
+      if (!collocation_row.offset.empty() && !lps_rows)
         {
           collocation_block.assign(n_keys, Tensor<2, dim>());
           collocation_keys.push_back(centre);
@@ -360,8 +445,13 @@ namespace PeriDEAL
             }
           std::sort(collocation_keys.begin(), collocation_keys.end());
         }
+      // (LPS collocation rows differ where a cloud node's dilatation is
+      // standard: formed row by row.)
+      const auto shared_collocation_row = [&](const unsigned int i) {
+        return is_collocation_node(i) && !lps_rows && node_rows.node.empty();
+      };
       const auto shared_row = [&](const unsigned int i) {
-        return layout.use_lattice && (bulk_row[i] || is_collocation_node(i));
+        return layout.use_lattice && (bulk_row[i] || shared_collocation_row(i));
       };
 
       // Columns: every node within two bonds of an owned node, dim columns
@@ -397,6 +487,15 @@ namespace PeriDEAL
           {
             used[i] |= 1;
             mark_neighbours(i, 2);
+            // A row of its own (irregular nodes) has no work list.
+            if (!node_rows.node.empty() && is_collocation_node(i))
+              {
+                const int r = node_row_of[i];
+                for (std::size_t e = node_rows.first[r];
+                     e < node_rows.first[r + 1];
+                     ++e)
+                  used[layout.node_of_slot(node_rows.neighbor_slot[e])] |= 2;
+              }
           }
         if (state_based)
           for (unsigned int j = 0; j < n; ++j)
@@ -428,7 +527,7 @@ namespace PeriDEAL
       std::vector<std::vector<std::uint32_t>> stored_keys(n_owned);
       const auto                              keys_of =
         [&](const unsigned int i) -> const std::vector<std::uint32_t> & {
-        return is_collocation_node(i)            ? collocation_keys :
+        return shared_collocation_row(i)         ? collocation_keys :
                layout.use_lattice && bulk_row[i] ? bulk_keys :
                                                    stored_keys[i];
       };
@@ -564,10 +663,35 @@ namespace PeriDEAL
               const bool  use_bulk = shared_row(i);
               const auto &keys     = keys_of(i);
               if (!use_bulk && !fully_prescribed[i])
-                row_values(i, scratch);
-              const auto &block = is_collocation_node(i) ? collocation_block :
-                                  use_bulk               ? bulk_block :
-                                                           scratch;
+                {
+                  if (!node_rows.node.empty() && is_collocation_node(i))
+                    {
+                      const int r = node_row_of[i];
+                      for (std::size_t e = node_rows.first[r];
+                           e < node_rows.first[r + 1];
+                           ++e)
+                        {
+                          const unsigned int j =
+                            layout.node_of_slot(node_rows.neighbor_slot[e]);
+                          for (unsigned int p = 0; p < dim; ++p)
+                            for (unsigned int q = 0; q < dim; ++q)
+                              {
+                                const double w =
+                                  node_rows.w[(e * dim + p) * dim + q];
+                                scratch[j][p][q] += w;
+                                scratch[i][p][q] -= w;
+                              }
+                        }
+                    }
+                  else if (lps_rows && is_collocation_node(i))
+                    collocation_lps_values(i, scratch);
+                  else
+                    row_values(i, scratch);
+                }
+              const auto &block = shared_collocation_row(i) ?
+                                    collocation_block :
+                                  use_bulk ? bulk_block :
+                                             scratch;
               for (unsigned int r = 0; r < dim; ++r)
                 {
                   const int row = row_of_node[i] + r;

@@ -28,15 +28,14 @@ namespace PeriDEAL
       const std::vector<bool>               &standard)
     {
       const MPI_Comm comm = nodes->get_communicator();
-      AssertThrow(layout.use_lattice,
-                  ExcMessage("The collocation quadrature needs a uniform grid "
-                             "of cubes (one shared bulk row); this mesh is "
-                             "not one. Use 'Quadrature/Scheme = standard'."));
-      AssertThrow(!state_based,
-                  ExcMessage("The collocation quadrature is built for "
-                             "bond-based models so far (the collocation rows "
-                             "are linearised; standard nodes keep the "
-                             "kinematics and failure of set_kinematics())."));
+      node_rows           = NodeRows();
+      node_row_of.clear();
+      if (!layout.use_lattice)
+        return use_collocation_per_node(settings, standard);
+      AssertThrow(!state_based || (!finite && !with_failure),
+                  ExcMessage("The collocation rows of state-based models are "
+                             "built for linear kinematics without failure "
+                             "(set_kinematics(false, {}))."));
 
       // The family of a bulk node: the node itself and the stencil offsets
       // within the horizon (the cells that the ball only cuts are not
@@ -80,20 +79,55 @@ namespace PeriDEAL
       FullMatrix<double> q;
       report.condition = fit.fit(cloud, q);
       // The linearised bond-based pair stiffness per unit volume,
-      // 2 beta(r) n (x) n (s = 1 at every node).
-      const auto moments = Quadrature::tensor_moments<dim>(
+      // 2 beta(r) n (x) n (s = 1 at every node). State-based (LPS,
+      // doc/collocation.md Sect. 5.2): the deviatoric part 2 beta(r) / m
+      // n (x) n, the dilatation row T (d omega r / m n) and the dilatation
+      // force row K (alpha(r) / m n), m the continuum weighted volume of
+      // the full ball.
+      const double m_continuum =
+        state_based ?
+          Quadrature::second_radial_moment<dim>(
+            [&](const double r) { return model->influence(r, horizon); },
+            horizon) :
+          0.;
+      const double s_continuum = state_based ? 1. / m_continuum : 1.;
+      const auto   moments     = Quadrature::tensor_moments<dim>(
         fit.basis(),
         [&](const double r) {
-          return 2. * model->extension_constant(r, horizon);
+          return 2. * model->extension_constant(r, horizon) * s_continuum;
         },
         horizon);
       const std::vector<Tensor<2, dim>> row =
         Quadrature::tensor_row(moments, q);
+      std::vector<Tensor<1, dim>> theta_row, kf_row;
+      if (state_based)
+        {
+          theta_row =
+            Quadrature::vector_row(Quadrature::vector_moments<dim>(
+                                     fit.basis(),
+                                     [&](const double r) {
+                                       return dim *
+                                              model->influence(r, horizon) * r *
+                                              s_continuum;
+                                     },
+                                     horizon),
+                                   q);
+          kf_row = Quadrature::vector_row(
+            Quadrature::vector_moments<dim>(
+              fit.basis(),
+              [&](const double r) {
+                return model->dilatation_constant(r, horizon) * s_continuum;
+              },
+              horizon),
+            q);
+        }
       report.symbol =
         Quadrature::largest_symbol_eigenvalue<dim>(cloud,
                                                    row,
                                                    h,
-                                                   dim == 3 ? 12 : 40);
+                                                   dim == 3 ? 12 : 40,
+                                                   kf_row,
+                                                   theta_row);
 
       std::size_t n_full = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)
@@ -119,6 +153,9 @@ namespace PeriDEAL
                           "'Order', or 'fall back' to the standard scheme"));
       collocation_node.assign(nodes->size(), 0);
       collocation_row = CollocationRow();
+      collocation_theta.clear();
+      collocation_theta_chunks.clear();
+      theta_slot.resize_fast(0);
       missed_switches = 0;
       scan_margin     = 0;
       tracking        = SwitchTracking();
@@ -134,11 +171,13 @@ namespace PeriDEAL
       // that W_0 u_i = -sum_{k>0} W_k u_i exactly: a rigid translation
       // gives no force), times the node's volume h^dim.
       const double volume = std::pow(h, dim);
+      collocation_row.of_stencil_index.assign(lists->stencil().size(), -1);
       for (unsigned int j = 0; j < cloud.size(); ++j)
         {
           const int k = stencil_index[selected[j]];
           if (k < 0)
             continue;
+          collocation_row.of_stencil_index[k] = collocation_row.offset.size();
           collocation_row.offset.push_back(layout.stencil_offset[k]);
           collocation_row.stencil_index.push_back(k);
           for (unsigned int c = 0; c < dim; ++c)
@@ -147,7 +186,22 @@ namespace PeriDEAL
                 collocation_row.w[c * dim + d].push_back(volume * row[j][c][d]);
                 collocation_row.sum[c][d] += volume * row[j][c][d];
               }
+          if (state_based)
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                collocation_row.theta_w[c].push_back(theta_row[j][c]);
+                collocation_row.kf[c].push_back(volume * kf_row[j][c]);
+              }
         }
+      // The dilatation part of K_ii: dF_i/du_i = sum_k V K_k (x)
+      // d theta_{i+k}/du_i (the theta_i term cancels, sum_k K_k = 0), and
+      // d theta_{i+k}/du_i = T_{-k} = -T_k (the cloud is symmetric, T odd).
+      if (state_based)
+        for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int d = 0; d < dim; ++d)
+              collocation_row.sum[c][d] +=
+                collocation_row.kf[c][k] * collocation_row.theta_w[d][k];
       // K_ii = V sum_k W_k must be positive definite for the static
       // solvers (and is for C2). The order-4 rows with the weight of Eq. 36
       // have a positive centre weight at m >= 3 (a negative K_ii): their
@@ -182,7 +236,25 @@ namespace PeriDEAL
       report.n_collocation_nodes =
         Utilities::MPI::sum(n_collocation_nodes, comm);
       report.n_fixed_standard = Utilities::MPI::sum(n_fixed_standard, comm);
+      if (state_based)
+        {
+          // The dilatation of every node (owned or ghost) with a full
+          // stencil outside the fixed standard region comes from its own
+          // row: the same decision on every process that has the node, so
+          // the same dilatation to the bit.
+          collocation_theta.assign(nodes->size(), 0);
+          for (unsigned int i = 0; i < nodes->size(); ++i)
+            collocation_theta[i] = needs_dilatation(i) &&
+                                   layout.on_stencil(i) &&
+                                   !(i < standard.size() && standard[i]);
+          theta_slot.resize_fast(layout.n_slots);
+          std::fill(theta_slot.begin(), theta_slot.end(), 0.);
+        }
       build_work_lists();
+      if (state_based)
+        layout.make_chunks(
+          [&](const unsigned int i) { return has_collocation_theta(i); },
+          collocation_theta_chunks);
       layout.make_chunks(
         [&](const unsigned int i) { return is_collocation_node(i); },
         collocation_chunks);
@@ -203,7 +275,7 @@ namespace PeriDEAL
     std::size_t
     BondOperator<dim>::n_collocation_nodes() const
     {
-      std::size_t count = 0;
+      std::size_t count = node_rows.node.size();
       for (const Chunk &chunk : collocation_chunks)
         count += chunk.length;
       return Utilities::MPI::sum(count, nodes->get_communicator());
@@ -214,7 +286,13 @@ namespace PeriDEAL
     void
     BondOperator<dim>::collocation_pass() const
     {
+      if (!node_rows.node.empty())
+        {
+          node_rows_pass();
+          return;
+        }
       const std::size_t n_offsets = collocation_row.offset.size();
+      const bool        lps       = !collocation_theta_chunks.empty();
       parallel::apply_to_subranges(
         std::size_t(0),
         collocation_chunks.size(),
@@ -245,6 +323,21 @@ namespace PeriDEAL
                         }
                     }
                 }
+              // State-based: the dilatation force, sum_k V K_k (theta_{i+k}
+              // - theta_i), after the deviatoric row.
+              if (lps)
+                for (std::size_t k = 0; k < n_offsets; ++k)
+                  {
+                    const double *ti = theta_slot.data() + s0;
+                    const double *tj = ti + collocation_row.offset[k];
+                    for (unsigned int a = 0; a < dim; ++a)
+                      {
+                        const double w = collocation_row.kf[a][k];
+#pragma omp simd
+                        for (unsigned int l = 0; l < len; ++l)
+                          force[a][l] += w * (tj[l] - ti[l]);
+                      }
+                  }
               for (unsigned int a = 0; a < dim; ++a)
                 for (unsigned int l = 0; l < len; ++l)
                   f_slot[a][s0 + l] = force[a][l];
@@ -258,8 +351,23 @@ namespace PeriDEAL
     Tensor<1, dim>
     BondOperator<dim>::collocation_force(const std::size_t si) const
     {
-      // The operations of collocation_pass(), lane by lane.
       Tensor<1, dim> f;
+      if (!node_rows.node.empty())
+        {
+          // The operations of node_rows_pass().
+          const int r = node_row_of[layout.node_of_slot(si)];
+          for (std::size_t e = node_rows.first[r]; e < node_rows.first[r + 1];
+               ++e)
+            for (unsigned int b = 0; b < dim; ++b)
+              {
+                const double du =
+                  u_slot[b][node_rows.neighbor_slot[e]] - u_slot[b][si];
+                for (unsigned int a = 0; a < dim; ++a)
+                  f[a] += node_rows.w[(e * dim + a) * dim + b] * du;
+              }
+          return f;
+        }
+      // The operations of collocation_pass(), lane by lane.
       for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
         for (unsigned int b = 0; b < dim; ++b)
           {
@@ -268,7 +376,58 @@ namespace PeriDEAL
             for (unsigned int a = 0; a < dim; ++a)
               f[a] += collocation_row.w[a * dim + b][k] * du;
           }
+      if (!collocation_theta_chunks.empty())
+        for (std::size_t k = 0; k < collocation_row.offset.size(); ++k)
+          {
+            const double dt =
+              theta_slot[si + collocation_row.offset[k]] - theta_slot[si];
+            for (unsigned int a = 0; a < dim; ++a)
+              f[a] += collocation_row.kf[a][k] * dt;
+          }
       return f;
+    }
+
+
+    template <int dim>
+    void
+    BondOperator<dim>::collocation_dilatation_pass() const
+    {
+      // theta_i = sum_k T_k . (u_{i+k} - u_i) in the row's order, the same
+      // for every node, process and thread; t = s theta for the standard
+      // neighbours' force passes.
+      const std::size_t n_offsets = collocation_row.offset.size();
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        collocation_theta_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double theta[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  s0  = collocation_theta_chunks[c].first_slot;
+              const unsigned int len = collocation_theta_chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
+                theta[l] = 0;
+              for (std::size_t k = 0; k < n_offsets; ++k)
+                {
+                  const std::ptrdiff_t o = collocation_row.offset[k];
+                  for (unsigned int b = 0; b < dim; ++b)
+                    {
+                      const double *ui = u_slot[b].data() + s0;
+                      const double *uj = ui + o;
+                      const double  w  = collocation_row.theta_w[b][k];
+#pragma omp simd
+                      for (unsigned int l = 0; l < len; ++l)
+                        theta[l] += w * (uj[l] - ui[l]);
+                    }
+                }
+              for (unsigned int l = 0; l < len; ++l)
+                {
+                  theta_slot[s0 + l] = theta[l];
+                  t_slot[s0 + l]     = s_slot[s0 + l] * theta[l];
+                }
+            }
+        },
+        LoopLayout<dim>::chunk_grain);
     }
 
 
@@ -276,7 +435,8 @@ namespace PeriDEAL
   template BondOperator<dim>::CollocationReport                               \
   BondOperator<dim>::use_collocation(const Quadrature::CollocationSettings &, \
                                      const std::vector<bool> &);              \
-  template void           BondOperator<dim>::collocation_pass() const;        \
+  template void BondOperator<dim>::collocation_pass() const;                  \
+  template void BondOperator<dim>::collocation_dilatation_pass() const;       \
   template Tensor<1, dim> BondOperator<dim>::collocation_force(               \
     const std::size_t) const;                                                 \
   template std::size_t BondOperator<dim>::n_missed_switches() const;          \

@@ -34,6 +34,9 @@ namespace PeriDEAL
       for (const double s0 : critical_stretch)
         with_failure = with_failure || std::isfinite(s0);
       with_failure = Utilities::MPI::max(with_failure ? 1 : 0, comm) == 1;
+      AssertThrow(collocation_theta.empty() || (!finite && !with_failure),
+                  ExcMessage("The collocation rows of state-based models are "
+                             "built for linear kinematics without failure."));
       s0_slot.resize_fast(0);
       if (finite || with_failure)
         {

@@ -149,6 +149,11 @@ namespace PeriDEAL
       // Every node standard until use_collocation() says otherwise.
       collocation_node.clear();
       collocation_row = CollocationRow();
+      node_rows       = NodeRows();
+      node_row_of.clear();
+      collocation_theta.clear();
+      collocation_theta_chunks.clear();
+      theta_slot.resize_fast(0);
       collocation_chunks.clear();
 
       layout.index_list_bonds();
@@ -173,7 +178,8 @@ namespace PeriDEAL
       // list for the dilatations of a state-based model.
       layout.make_chunks(
         [&](const unsigned int i) {
-          return needs_dilatation(i) && layout.on_stencil(i);
+          return needs_dilatation(i) && !has_collocation_theta(i) &&
+                 layout.on_stencil(i);
         },
         theta_work().chunks);
       layout.make_chunks(
@@ -189,10 +195,12 @@ namespace PeriDEAL
     void
     BondOperator<dim>::build_work_lists()
     {
-      const unsigned int n           = nodes->size();
-      const unsigned int n_owned     = nodes->n_owned();
-      const auto         needs_theta = [&](const unsigned int i) {
-        return needs_dilatation(i);
+      const unsigned int n       = nodes->size();
+      const unsigned int n_owned = nodes->n_owned();
+      // (Nodes whose dilatation comes from collocation have a pass of
+      // their own.)
+      const auto needs_theta = [&](const unsigned int i) {
+        return needs_dilatation(i) && !has_collocation_theta(i);
       };
       // (Nodes evaluated by collocation have a pass of their own.)
       const auto needs_force = [&](const unsigned int i) {
@@ -374,7 +382,7 @@ namespace PeriDEAL
       std::size_t visits = layout.bond_visits;
       for (const Chunk &chunk : collocation_chunks)
         visits += chunk.length * collocation_row.offset.size();
-      return visits;
+      return visits + node_rows.neighbor_slot.size();
     }
 
 

@@ -150,7 +150,7 @@ namespace PeriDEAL
             dilatation_pass();
           force_pass();
           // The collocation rows (the force pass skips their nodes).
-          if (!collocation_chunks.empty())
+          if (has_collocation_rows())
             collocation_pass();
           double xkx = 0, xmx = 0;
           for (unsigned int i = 0; i < n_owned; ++i)

@@ -70,10 +70,12 @@ namespace PeriDEAL
       AssertThrow(!simulator.get_model().is_state_based(),
                   ExcInvalidInput("Quadrature/Scheme",
                                   simulator.get_quadrature_scheme_name(),
-                                  "the collocation form of state-based models "
-                                  "(LPS) is derived (doc/collocation.md Sect. "
-                                  "5) but not built yet; use a bond-based "
-                                  "model or 'Scheme = standard'"));
+                                  "the collocation rows of state-based "
+                                  "models (LPS, doc/collocation.md Sect. 5) "
+                                  "run in quasi-static problems only so far "
+                                  "(linear, without failure); use a "
+                                  "bond-based model or 'Scheme = "
+                                  "standard'"));
     }
 
 

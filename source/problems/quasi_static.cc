@@ -106,7 +106,15 @@ namespace PeriDEAL
                                     "' adds others; use 'Boundary "
                                     "treatment/Treatment = none' or 'Scheme "
                                     "= standard'"));
-      this->check_collocation_model(simulator);
+      AssertThrow(
+        !simulator.get_model().is_state_based() ||
+          simulator.get_node_perturbation() == 0,
+        ExcInvalidInput("Geometry/Node perturbation",
+                        format_number(simulator.get_node_perturbation()),
+                        "the collocation rows of the state-based model are "
+                        "built for nodes at the cell centres so far (perturbed "
+                        "nodes take bond-based rows); set 0, use a bond-based "
+                        "model, or 'Quadrature/Scheme = standard'"));
       const auto *hybrid = simulator.get_quadrature_scheme().hybrid();
       AssertThrow(hybrid == nullptr || !hybrid->adaptive,
                   ExcInvalidInput("Quadrature/hybrid/Configuration",

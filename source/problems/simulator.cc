@@ -78,6 +78,7 @@ namespace PeriDEAL
       // neighbours, hence their neighbours: two horizons.
       const double coupling_range =
         couples_two_horizons() ? 2 * (horizon + diameter) : horizon + diameter;
+      nodes.set_perturbation(node_perturbation, random_seed);
       nodes.reinit(dof_handler, coupling_range);
       summary.n_nodes = triangulation->n_global_active_cells();
     }
@@ -109,7 +110,11 @@ namespace PeriDEAL
            << Utilities::MPI::sum(nodes.n_ghost(), communicator)
            << " ghost copies), bonds: " << summary.n_bonds << " ("
            << std::setprecision(4) << double(summary.n_bonds) / summary.n_nodes
-           << " per node), weights by '" << algorithm_name << "'"
+           << " per node)";
+      if (node_perturbation > 0)
+        line << ", nodes perturbed by up to " << node_perturbation
+             << " h (seed " << random_seed << ")";
+      line << ", weights by '" << algorithm_name << "'"
            << (neighbor_lists.used_uniform_grid_table() ?
                  " from the uniform-grid table" :
                  " per bond");

@@ -81,11 +81,10 @@ namespace PeriDEAL
               const std::string selector =
                 (depth == 1 ? selection.section + "/" : std::string()) +
                 selection.selector;
-              const bool shared =
-                std::find(selection.shared.begin(),
-                          selection.shared.end(),
-                          std::make_pair(plugin, selected)) !=
-                selection.shared.end();
+              const bool shared = std::find(selection.shared.begin(),
+                                            selection.shared.end(),
+                                            std::make_pair(plugin, selected)) !=
+                                  selection.shared.end();
               AssertThrow(plugin == selected || shared,
                           ExcMessage(
                             "The entry '" + entry.name() + "' (line " +
@@ -121,6 +120,11 @@ namespace PeriDEAL
                           "the problem type '" + problem_name +
                             "' solves no linear system with it; remove the "
                             "subsection 'Linear solver'"});
+      if (node_perturbation == 0)
+        unused.push_back({"Geometry/Random seed",
+                          "it seeds 'Geometry/Node perturbation', which is "
+                          "0 (nodes at the cell centres); set a perturbation "
+                          "or remove the entry"});
       ParameterHandler defaults;
       declare_parameters(defaults);
       PeriDEAL::check_unused_entries(changed_entries(prm, defaults), unused);

@@ -83,6 +83,23 @@ namespace PeriDEAL
                           "0",
                           Patterns::Integer(0, 12),
                           "Number of times every cell is split into 2^dim.");
+        prm.declare_entry(
+          "Node perturbation",
+          "0",
+          Patterns::Double(),
+          "Irregular nodes: each node moves from its cell's centre by a "
+          "random offset whose component along each axis is uniform in "
+          "[-f h, f h], f this fraction of the cell's side h, in [0, 0.5) "
+          "so that the node stays in its cell (the hybrid-collocation paper "
+          "uses 0.35). The standard scheme keeps the cells as its volumes; "
+          "the collocation scheme fits a row per node. 0: nodes at the "
+          "centres.");
+        prm.declare_entry("Random seed",
+                          "1",
+                          Patterns::Integer(0),
+                          "The seed of 'Node perturbation': the offsets are a "
+                          "hash of it and of each cell's id, the same on "
+                          "every number of processes.");
         prm.declare_entry("Mesh file",
                           "",
                           Patterns::FileName(),
@@ -245,6 +262,17 @@ namespace PeriDEAL
       prm.enter_subsection("Geometry");
       {
         global_refinements = prm.get_integer("Global refinements");
+        node_perturbation  = prm.get_double("Node perturbation");
+        AssertThrow(node_perturbation >= 0 && node_perturbation < 0.5,
+                    ExcInvalidInput("Geometry/Node perturbation",
+                                    prm.get("Node perturbation"),
+                                    "the offset of a node from its cell's "
+                                    "centre, as a fraction of the cell's "
+                                    "side, lies in [0, 0.5) (the node stays "
+                                    "in its cell); 0 keeps the centres, the "
+                                    "hybrid-collocation paper uses 0.35"));
+        random_seed =
+          static_cast<std::uint64_t>(prm.get_integer("Random seed"));
         mesh_generator = MeshGeneratorRegistry<dim>::create(prm.get("Mesh"));
         mesh_generator->parse_parameters(prm);
       }

@@ -326,6 +326,52 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<Tensor<1, dim>>
+    vector_moments(const MonomialBasis<dim>            &basis,
+                   const std::function<double(double)> &radial,
+                   const double                         horizon)
+    {
+      std::vector<Tensor<1, dim>> moments(basis.size());
+      for (unsigned int a = 1; a < basis.size(); ++a)
+        {
+          const double r =
+            radial_integral(radial, horizon, basis.degree(a) + dim - 1);
+          for (unsigned int b = 0; b < dim; ++b)
+            {
+              auto beta = basis.exponent(a);
+              ++beta[b];
+              moments[a][b] = r * sphere_moment<dim>(beta);
+            }
+        }
+      return moments;
+    }
+
+
+    template <int dim>
+    double
+    second_radial_moment(const std::function<double(double)> &radial,
+                         const double                         horizon)
+    {
+      // int_B g r^2 dV = |S^{d-1}| int_0^delta g(r) r^{d+1} dr.
+      return sphere_moment<dim>(std::array<unsigned int, dim>{}) *
+             radial_integral(radial, horizon, dim + 1);
+    }
+
+
+    template <int dim>
+    std::vector<Tensor<1, dim>>
+    vector_row(const std::vector<Tensor<1, dim>> &moments,
+               const FullMatrix<double>          &q)
+    {
+      std::vector<Tensor<1, dim>> row(q.n());
+      for (unsigned int j = 0; j < q.n(); ++j)
+        for (unsigned int a = 0; a < q.m(); ++a)
+          row[j] += q(a, j) * moments[a];
+      return row;
+    }
+
+
+    template <int dim>
     std::vector<double>
     scalar_moments(const MonomialBasis<dim>            &basis,
                    const std::function<double(double)> &radial,
@@ -373,7 +419,9 @@ namespace PeriDEAL
     largest_symbol_eigenvalue(const std::vector<Tensor<1, dim>> &xi,
                               const std::vector<Tensor<2, dim>> &blocks,
                               const double                       h,
-                              const unsigned int                 n_per_axis)
+                              const unsigned int                 n_per_axis,
+                              const std::vector<Tensor<1, dim>> &force_row,
+                              const std::vector<Tensor<1, dim>> &theta_row)
     {
       double       largest = -std::numeric_limits<double>::max();
       double       lowest  = 0;
@@ -397,6 +445,16 @@ namespace PeriDEAL
           Tensor<2, dim> sigma;
           for (unsigned int j = 0; j < xi.size(); ++j)
             sigma += (std::cos(k * xi[j]) - 1.) * blocks[j];
+          if (!force_row.empty())
+            {
+              Tensor<1, dim> s_force, s_theta;
+              for (unsigned int j = 0; j < xi.size(); ++j)
+                {
+                  s_force += std::sin(k * xi[j]) * force_row[j];
+                  s_theta += std::sin(k * xi[j]) * theta_row[j];
+                }
+              sigma -= outer_product(s_force, s_theta);
+            }
           const auto lambda = eigenvalues(symmetrize(sigma));
           largest           = std::max(largest, lambda[0]);
           lowest            = std::min(lowest, lambda[dim - 1]);
@@ -421,6 +479,16 @@ namespace PeriDEAL
     const MonomialBasis<dim> &,                                              \
     const std::function<double(double)> &,                                   \
     const double);                                                           \
+  template std::vector<Tensor<1, dim>> vector_moments<dim>(                  \
+    const MonomialBasis<dim> &,                                              \
+    const std::function<double(double)> &,                                   \
+    const double);                                                           \
+  template double second_radial_moment<dim>(                                 \
+    const std::function<double(double)> &,                                   \
+    const double);                                                           \
+  template std::vector<Tensor<1, dim>> vector_row<dim>(                      \
+    const std::vector<Tensor<1, dim>> &,                                     \
+    const FullMatrix<double> &);                                             \
   template std::vector<Tensor<2, dim>> tensor_row<dim>(                      \
     const std::vector<Tensor<2, dim>> &,                                     \
     const FullMatrix<double> &);                                             \
@@ -428,7 +496,9 @@ namespace PeriDEAL
     const std::vector<Tensor<1, dim>> &,                                     \
     const std::vector<Tensor<2, dim>> &,                                     \
     const double,                                                            \
-    const unsigned int);
+    const unsigned int,                                                      \
+    const std::vector<Tensor<1, dim>> &,                                     \
+    const std::vector<Tensor<1, dim>> &);
     PERIDEAL_INSTANTIATE(1)
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)

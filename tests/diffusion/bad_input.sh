@@ -166,6 +166,13 @@ group_collocation() {
   expect_error "$col" \
     "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the diffusion model 'corrosion' does not run with the collocation quadrature yet"
   base_prm=base.prm
+  # Irregular nodes: the diffusion rows need the cell centres so far; the
+  # standard scheme runs on them.
+  expect_error "$col; s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.35/" \
+    "Invalid value '0.35' for the parameter 'Geometry/Node perturbation': the diffusion operator's collocation rows are built for nodes at the cell centres"
+  sed "s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.35/" base.prm > perturbed.prm
+  expect_valid 1 perturbed.prm "plain diffusion on perturbed nodes (standard scheme)" out/solution.pvd out/history.csv
+  rm -rf out
 }
 
 group_corrosion() {

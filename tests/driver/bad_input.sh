@@ -234,8 +234,10 @@ group_collocation() {
   # (doc/collocation.md Sect. 7): an indefinite static operator.
   expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n  end' "$gmres")" \
     "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
-  expect_error "$(col '' "$gmres")" \
-    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation form of state-based models"
+  # LPS collocation rows run (matrix-free GMRES here).
+  sed "$(col '' "$gmres")" base.prm > collocation_lps.prm
+  expect_valid 1 collocation_lps.prm "collocation, LPS, GMRES" out/solution_0.pvtu
+  rm -rf out
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Method = CG\nend')" \
     "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend')" \
@@ -252,6 +254,41 @@ group_collocation() {
     "Invalid value '5, 5, 6, 6' for the parameter 'Quadrature/hybrid/Standard boxes'"
   expect_error "$bb; s/set Dimension = 2/set Dimension = 2\nsubsection Quadrature\n  subsection collocation\n    set Order = 4\n  end\nend/" \
     "The entry 'Quadrature/collocation/Order' (line 4) belongs to 'collocation', but 'Quadrature/Scheme' selects 'standard'"
+  # Irregular nodes ('Geometry/Node perturbation'): a fraction outside
+  # [0, 0.5), a seed without a perturbation, and the schemes and models
+  # that need the nodes at the cell centres so far.
+  perturb() { printf 's/  set Subdivisions = 10, 10/  set Subdivisions = 10, 10\\n%s/' "$1"; }
+  expect_error "$(perturb '  set Node perturbation = 0.5')" \
+    "Invalid value '0.5' for the parameter 'Geometry/Node perturbation': the offset of a node from its cell's centre, as a fraction of the cell's side, lies in [0, 0.5)"
+  expect_error "$(perturb '  set Node perturbation = -0.1')" \
+    "Invalid value '-0.1' for the parameter 'Geometry/Node perturbation'"
+  expect_error "$(perturb '  set Random seed = 3')" \
+    "Invalid value '3' for the parameter 'Geometry/Random seed': this entry has no effect here: it seeds 'Geometry/Node perturbation', which is 0"
+  expect_error "$(perturb '  set Node perturbation = 0.3'); $(col '' "$gmres")" \
+    "Invalid value '0.3' for the parameter 'Geometry/Node perturbation': the collocation rows of the state-based model are built for nodes at the cell centres so far"
+  sed "$bb; $(perturb '  set Node perturbation = 0.3'); $(col '' "$gmres")" base.prm > perturbed.prm
+  expect_valid 1 perturbed.prm "collocation, bond-based, perturbed nodes" out/solution_0.pvtu
+  rm -rf out
+  # A heavily perturbed cloud (0.49 h) whose order-2 row has a non-positive
+  # diagonal: with 'fall back' its node is standard and counted, and the run
+  # completes; with 'error' the run stops naming the entry, the same count
+  # and the node. (Property checks: the count in both modes agrees and is not
+  # zero; the field is then no longer exact at round-off.)
+  heavy="s/set Node perturbation = 0.35/set Node perturbation = 0.49/; s/set Write VTU = false/set Write VTU = true/"
+  sed "$heavy; s|  set Directory *=.*||; s|^subsection Output|subsection Output\n  set Directory = out|" \
+    "$source_dir/collocation_2d_quadratic_perturbed.prm" > heavy.prm
+  expect_valid 1 heavy.prm "collocation on 0.49 h perturbed nodes, fall back" out/solution_0.pvtu
+  fell_back=$(sed -n 's/.* \([0-9][0-9]*\) standard (ill-conditioned or indefinite cloud).*/\1/p' <<<"$out")
+  [ -n "$fell_back" ] && [ "$fell_back" -gt 0 ] ||
+    fail "no node fell back on 0.49 h perturbed nodes: $(grep quadrature <<<"$out")"
+  rm -rf out
+  base_prm=heavy.prm
+  expect_error "s/    set Order = 2/    set Order = 2\n    set Ill-conditioned clouds = error/" \
+    "Invalid value 'error' for the parameter 'Quadrature/collocation/Ill-conditioned clouds': $fell_back nodes have a collocation cloud with cond(A) > 1e12 or a row with a non-positive diagonal (one at (" 2
+  base_prm=base.prm
+  sed "$(perturb '  set Node perturbation = 0.3')" base.prm > perturbed_standard.prm
+  expect_valid 1 perturbed_standard.prm "standard LPS, perturbed nodes" out/solution_0.pvtu
+  rm -rf out
 }
 
 # Overflowing moduli, output names that meet, entries that do nothing.

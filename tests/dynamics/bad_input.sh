@@ -207,6 +207,11 @@ group_hybrid() {
   sed "$(hy '')" base.prm > hybrid.prm
   expect_valid 1 hybrid.prm "the hybrid scheme" out/solution.pvd
   rm -rf out
+  expect_error "$(hy ''); s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.2/" \
+    "Invalid value '0.2' for the parameter 'Geometry/Node perturbation': the hybrid scheme of explicit dynamics shares one collocation row over a uniform grid"
+  sed "s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.2/" base.prm > perturbed.prm
+  expect_valid 1 perturbed.prm "explicit dynamics on perturbed nodes (standard scheme)" out/solution.pvd
+  rm -rf out
   for np in 1 2; do
     expect_error "$(hy '  subsection hybrid\n    set Critical stretch fraction = 1\n  end')" \
       "Invalid value '1' for the parameter 'Quadrature/hybrid/Critical stretch fraction': alpha of Eq. 65 lies strictly between 0 and 1" $np
@@ -222,7 +227,7 @@ group_hybrid() {
   expect_error "$(hy '  subsection collocation\n    set Order = 4\n  end')" \
     "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
   expect_error "$(hy '')"'; s/  set Model = bond-based/  set Model = linear peridynamic solid/; s/  subsection bond-based/  subsection linear peridynamic solid/' \
-    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the collocation form of state-based models (LPS) is derived"
+    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the collocation rows of state-based models (LPS, doc/collocation.md Sect. 5) run in quasi-static problems only so far"
   expect_error "$(hy '  subsection hybrid\n    set Configuration = fixed\n    set Critical stretch fraction = 0.5\n  end')" \
     "Invalid value '0.5' for the parameter 'Quadrature/hybrid/Critical stretch fraction': this entry has no effect here: with 'Configuration = fixed' no node switches"
   expect_error "$(hy '  subsection hybrid\n    set Standard layer thickness = 2\n  end')" \

@@ -35,10 +35,13 @@ namespace PeriDEAL
     public:
       /**
        * Decide uniformity (collective over the node set's communicator)
-       * and, on a uniform set, build the local slot box.
+       * and, on a uniform set, build the local slot box. With
+       * @p at_cell_centres the cells' centres stand for the nodes (the
+       * lattice of the mesh, also when the nodes are perturbed in their
+       * cells: NodeSet::set_perturbation()).
        */
       void
-      reinit(const NodeSet<dim> &nodes);
+      reinit(const NodeSet<dim> &nodes, const bool at_cell_centres = false);
 
       /// Whether every node of the mesh lies on one lattice of cubes.
       bool

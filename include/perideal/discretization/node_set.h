@@ -11,6 +11,7 @@
 #include <deal.II/grid/tria_accessor.h>
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace PeriDEAL
@@ -105,6 +106,19 @@ namespace PeriDEAL
       void
       reinit(const DoFHandler<dim> &dof_handler, const double coupling_range);
 
+      /**
+       * Irregular nodes (hybrid-collocation paper Sect. 5, 'Geometry/Node
+       * perturbation'): from the next reinit() on, every node lies at its
+       * cell's centre plus an offset whose component d is uniform in
+       * \f$[-f\,h_d, f\,h_d]\f$, \f$h_d\f$ the cell's side along d and
+       * f = @p fraction (0 <= f < 0.5: the node stays inside its cell). The
+       * offsets are a hash of @p seed, the cell's CellId and d: the same on
+       * every partition and run. The cell (and so the standard scheme's
+       * volumes) is unchanged.
+       */
+      void
+      set_perturbation(const double fraction, const std::uint64_t seed);
+
       /// Number of locally owned nodes; they come first.
       unsigned int
       n_owned() const;
@@ -147,6 +161,8 @@ namespace PeriDEAL
       unsigned int           n_owned_nodes = 0;
       double                 max_diameter  = 0;
       IndexSet               relevant;
+      double                 perturbation      = 0;
+      std::uint64_t          perturbation_seed = 1;
     };
   } // namespace Discretization
 } // namespace PeriDEAL

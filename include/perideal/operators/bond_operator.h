@@ -254,7 +254,12 @@ namespace PeriDEAL
         /// The shared bulk row: collocation nodes n_c (the node itself
         /// included), monomials n_p, cond_2(A).
         unsigned int n_collocation = 0, n_monomials = 0;
-        double       condition = 0;
+        /// Rows per node (irregular nodes): n_collocation is then the
+        /// largest cloud, n_collocation_min the smallest, and condition
+        /// the largest cond_2(A) of the nodes' clouds.
+        bool         per_node          = false;
+        unsigned int n_collocation_min = 0;
+        double       condition         = 0;
         /// The largest eigenvalue of the bulk row's Fourier symbol over
         /// the magnitude of the most negative one
         /// (Quadrature::largest_symbol_eigenvalue()): > 0 means growing
@@ -275,10 +280,24 @@ namespace PeriDEAL
        * over the collocation nodes o_k of one shared bulk row (one fit on
        * the uniform lattice; L the moments of the linearised bond-based
        * pair stiffness 2 beta(r) n (x) n). The other nodes keep the
-       * standard scheme. Only for bond-based models with linear kinematics
-       * and no failure, on a uniform lattice; apply() and assemble() both
-       * evaluate the rows; the operator is not symmetric. An ill-conditioned
-       * bulk cloud falls back to the standard scheme everywhere or throws, as
+       * standard scheme. State-based (LPS) models take two rows
+       * (doc/collocation.md Sect. 5.2): every node with a full stencil
+       * (owned or ghost, not in @p standard) gets its dilatation from the
+       * fit of its own cloud, \f$\theta_i = \sum_k T_k \cdot (u_{i+o_k} -
+       * u_i)\f$, and the force of a collocation node adds
+       * \f$V_i \sum_k K_k (\theta_{i+o_k} - \theta_i)\f$ to the
+       * deviatoric row (whose moments are those of 2 c_mu omega / m n (x) n,
+       * m the continuum weighted volume); the other nodes' dilatations stay
+       * standard. Linear kinematics and no failure only (the bond-based rows
+       * also run beside the nonlinear passes of standard nodes); on a
+       * uniform lattice; apply() and assemble() both evaluate the rows; the
+       * operator is not symmetric. Off the lattice (irregular nodes,
+       * bond-based models) every owned node whose ball lies in the body and
+       * its layers (its cells' exact partial volumes fill the ball) gets a
+       * row of its own, fitted to its own cloud; an ill-conditioned cloud
+       * makes its node standard (counted) or throws, as @p settings say. An
+       * ill-conditioned bulk cloud falls back to the standard scheme everywhere
+       * or throws, as
        * @p settings say. Nodes flagged in @p standard (owned and ghost
        * indices; empty: none) keep the standard scheme (the fixed region
        * of the hybrid scheme). Collective (the report's counts are sums over
@@ -528,7 +547,44 @@ namespace PeriDEAL
         std::vector<unsigned int>                  stencil_index;
         std::array<std::vector<double>, dim * dim> w;
         Tensor<2, dim>                             sum;
+        /// State-based models: the dilatation row T_k (theta_w[c][k]) and
+        /// the dilatation force row V K_k (kf[c][k]), in the same order.
+        std::array<std::vector<double>, dim> theta_w, kf;
+        /// Per stencil offset: its index in the row, or -1.
+        std::vector<int> of_stencil_index;
       };
+
+      /**
+       * Off the lattice (irregular nodes, 'Geometry/Node perturbation'):
+       * one collocation row per node, fitted to its own cloud
+       * (use_collocation_per_node()): the nodes with a row, the entries of
+       * row r in [first[r], first[r + 1]), each a neighbour slot and the
+       * d x d block V W_k (dim * dim doubles).
+       */
+      struct NodeRows
+      {
+        std::vector<unsigned int> node;
+        std::vector<std::size_t>  first{0};
+        std::vector<std::size_t>  neighbor_slot;
+        std::vector<double>       w;
+      };
+      NodeRows         node_rows;
+      std::vector<int> node_row_of;
+
+      /// Whether any node is evaluated by a collocation row.
+      bool
+      has_collocation_rows() const
+      {
+        return !collocation_chunks.empty() || !node_rows.node.empty();
+      }
+
+      /// State-based models with collocation: 1 for the nodes (owned and
+      /// ghost) whose dilatation comes from the collocation row, and the
+      /// chunks of their slots; the plain dilatation theta of every node
+      /// with a list, per slot (the collocation rows read it).
+      std::vector<char>             collocation_theta;
+      std::vector<Chunk>            collocation_theta_chunks;
+      mutable AlignedVector<double> theta_slot;
 
       /// 1 for the nodes evaluated by collocation; empty without.
       std::vector<char> collocation_node;
@@ -614,6 +670,13 @@ namespace PeriDEAL
       needs_dilatation(const unsigned int i) const
       {
         return state_based && lists->has_list(i);
+      }
+
+      /// Whether node i's dilatation comes from the collocation row.
+      bool
+      has_collocation_theta(const unsigned int i) const
+      {
+        return !collocation_theta.empty() && collocation_theta[i] != 0;
       }
 
       /// Call f(j, w_ij) for every intact bond of node i.
@@ -719,6 +782,22 @@ namespace PeriDEAL
       /// (bond_operator_collocation.cc).
       void
       collocation_pass() const;
+
+      /// use_collocation() off the lattice: a row per node
+      /// (bond_operator_collocation_rows.cc).
+      CollocationReport
+      use_collocation_per_node(const Quadrature::CollocationSettings &settings,
+                               const std::vector<bool>               &standard);
+
+      /// The forces of the nodes with a row of their own into f_slot.
+      void
+      node_rows_pass() const;
+
+      /// State-based models: the dilatations of the nodes of
+      /// collocation_theta_chunks into theta_slot and t_slot (s theta),
+      /// after dilatation_pass() (bond_operator_collocation.cc).
+      void
+      collocation_dilatation_pass() const;
 
       /// The tiles and per-slot state of critical_bond_possible(), after
       /// use_collocation() (bond_operator_switch.cc).

@@ -142,8 +142,10 @@ namespace PeriDEAL
 
       /**
        * Refuse, naming `Quadrature/Scheme`, a state-based material model
-       * with a scheme that has collocation nodes (their LPS rows are not
-       * built yet); nothing for the standard scheme. For check_input().
+       * with a scheme that has collocation nodes (their LPS rows run in
+       * quasi-static problems only, linear and without failure); nothing
+       * for the standard scheme. For check_input() of the other problem
+       * types.
        */
       static void
       check_collocation_model(const Simulator<dim> &simulator);

@@ -26,6 +26,7 @@
 #include <perideal/quadrature/quadrature_scheme.h>
 #include <perideal/solvers/linear_solver.h>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -154,6 +155,15 @@ namespace PeriDEAL
       double
       get_horizon() const;
 
+      /// 'Geometry/Node perturbation': the largest offset of a node from its
+      /// cell's centre, per direction, as a fraction of the cell's side (0:
+      /// nodes at the centres).
+      double
+      get_node_perturbation() const
+      {
+        return node_perturbation;
+      }
+
       const Boundary::BoundaryConditions<dim> &
       get_boundary_conditions() const;
 
@@ -277,6 +287,9 @@ namespace PeriDEAL
       /// The coarse mesh ('Geometry/Mesh').
       std::unique_ptr<MeshGenerator<dim>> mesh_generator;
       unsigned int                        global_refinements = 0;
+      /// 'Geometry/Node perturbation' (a fraction of h) and 'Random seed'.
+      double        node_perturbation = 0;
+      std::uint64_t random_seed       = 1;
       /// 'Horizon/Specification', parsed once.
       enum class HorizonSpecification
       {

@@ -205,6 +205,36 @@ namespace PeriDEAL
                    const std::function<double(double)> &radial,
                    const double                         horizon);
 
+    /**
+     * The moments of a kernel that is radial times the direction,
+     * \f$k(\xi) = g(|\xi|)\, n\f$: \f$L_a[\alpha] = \int_B g(r) n_a
+     * \xi^\alpha dV\f$ for every monomial of @p basis (zero for the
+     * constant): the dilatation and the dilatation force of the collocation
+     * LPS (doc/collocation.md Sect. 5.2: T with g = d omega r / m, Kf with
+     * g = alpha(r) / m).
+     */
+    template <int dim>
+    std::vector<Tensor<1, dim>>
+    vector_moments(const MonomialBasis<dim>            &basis,
+                   const std::function<double(double)> &radial,
+                   const double                         horizon);
+
+    /**
+     * The integral \f$\int_B g(|\xi|) |\xi|^2 dV\f$ over the ball of
+     * radius @p horizon: with g the influence function, the weighted volume
+     * m of a full neighbourhood in the continuum.
+     */
+    template <int dim>
+    double
+    second_radial_moment(const std::function<double(double)> &radial,
+                         const double                         horizon);
+
+    /// A row's vectors: W_j = sum_alpha L[alpha] Q[alpha, j].
+    template <int dim>
+    std::vector<Tensor<1, dim>>
+    vector_row(const std::vector<Tensor<1, dim>> &moments,
+               const FullMatrix<double>          &q);
+
     /// A row's d x d blocks: W_j = sum_alpha L[alpha] Q[alpha, j].
     template <int dim>
     std::vector<Tensor<2, dim>>
@@ -221,14 +251,21 @@ namespace PeriDEAL
      * stencil on a lattice of spacing @p h, over a grid of
      * @p n_per_axis wave numbers per axis in the Brillouin zone, relative
      * to the magnitude of the most negative one (doc/collocation.md Sect.
-     * 7): positive means growing modes.
+     * 7): positive means growing modes. With @p force_row and
+     * @p theta_row (the two antisymmetric rows K_j and T_j of the collocation
+     * LPS, doc/collocation.md Sect. 5.2) the symbol is that of the
+     * composition, \f$\sigma(k) - S_K(k) \otimes S_T(k)\f$ with
+     * \f$S(k) = \sum_j (\cdot)_j \sin(k\cdot\xi_j)\f$.
      */
     template <int dim>
     double
-    largest_symbol_eigenvalue(const std::vector<Tensor<1, dim>> &xi,
-                              const std::vector<Tensor<2, dim>> &blocks,
-                              const double                       h,
-                              const unsigned int                 n_per_axis);
+    largest_symbol_eigenvalue(
+      const std::vector<Tensor<1, dim>> &xi,
+      const std::vector<Tensor<2, dim>> &blocks,
+      const double                       h,
+      const unsigned int                 n_per_axis,
+      const std::vector<Tensor<1, dim>> &force_row = {},
+      const std::vector<Tensor<1, dim>> &theta_row = {});
   } // namespace Quadrature
 } // namespace PeriDEAL
 

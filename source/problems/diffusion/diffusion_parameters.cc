@@ -319,6 +319,14 @@ namespace PeriDEAL
       if (simulator.get_quadrature_scheme().collocation() == nullptr)
         return;
       const std::string &scheme = simulator.get_quadrature_scheme_name();
+      AssertThrow(simulator.get_node_perturbation() == 0,
+                  ExcInvalidInput(
+                    "Geometry/Node perturbation",
+                    format_number(simulator.get_node_perturbation()),
+                    "the diffusion operator's collocation rows are built "
+                    "for nodes at the cell centres (one shared row) so far; "
+                    "set 0, or 'Quadrature/Scheme = standard' (which runs on "
+                    "perturbed nodes)"));
       AssertThrow(model->supports_collocation(),
                   ExcInvalidInput("Quadrature/Scheme",
                                   scheme,

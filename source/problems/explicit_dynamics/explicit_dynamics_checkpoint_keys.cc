@@ -136,6 +136,13 @@ namespace PeriDEAL
              {"Lower corner", "Upper corner", "Subdivisions"})
           add(std::string("Geometry/") + name);
       add("Geometry/Global refinements");
+      // Irregular nodes (none for nodes at the centres: those checkpoints
+      // keep their keys; the positions are in the hash as well).
+      if (std::stod(entries["Geometry/Node perturbation"]) != 0)
+        {
+          add("Geometry/Node perturbation");
+          add("Geometry/Random seed");
+        }
       std::vector<std::string> own = {"Kinematics",
                                       "Pre-cracks",
                                       "No-fail boxes",

@@ -33,6 +33,15 @@ namespace PeriDEAL
       if (simulator.get_quadrature_scheme().hybrid() == nullptr)
         return;
       this->check_collocation_model(simulator);
+      AssertThrow(simulator.get_node_perturbation() == 0,
+                  ExcInvalidInput(
+                    "Geometry/Node perturbation",
+                    format_number(simulator.get_node_perturbation()),
+                    "the hybrid scheme of explicit dynamics shares one "
+                    "collocation row over a uniform grid (its switch bounds "
+                    "the stretches on the lattice), so it needs the nodes at "
+                    "the cell centres; set 0, or 'Quadrature/Scheme = "
+                    "standard' (which runs on perturbed nodes)"));
     }
 
 
