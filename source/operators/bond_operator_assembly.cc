@@ -240,6 +240,30 @@ namespace PeriDEAL
       // dF_i/du_k into block[key(k)], which must be zero on entry:
       //   F_i = sum_j [a (s_i theta_i + s_j theta_j) + b (s_i + s_j) e_ij] n,
       //   d theta_p/du_q = g_pq n_pq (q != p), -G_p (q = p).
+      // block += factor (x) d theta_j / du (j's dilatation row, key key_j),
+      // the column of j itself included: the dilatation terms of a force
+      // row, standard and collocation alike.
+      const auto add_theta_row = [&](const unsigned int           j,
+                                     const std::ptrdiff_t         key_j,
+                                     const double                *factor,
+                                     std::vector<Tensor<2, dim>> &block) {
+        double G_j[dim] = {};
+        theta_entries(j,
+                      key_j,
+                      [&](const std::ptrdiff_t key_q, const double *gn) {
+                        Tensor<2, dim> &target = block[key_q];
+                        for (unsigned int q = 0; q < dim; ++q)
+                          {
+                            G_j[q] += gn[q];
+                            for (unsigned int p = 0; p < dim; ++p)
+                              target[p][q] += factor[p] * gn[q];
+                          }
+                      });
+        for (unsigned int p = 0; p < dim; ++p)
+          for (unsigned int q = 0; q < dim; ++q)
+            block[key_j][p][q] -= factor[p] * G_j[q];
+      };
+
       const auto row_values = [&](const unsigned int           i,
                                   std::vector<Tensor<2, dim>> &block) {
         const std::ptrdiff_t key_i = layout.use_lattice ? centre : i;
@@ -266,7 +290,7 @@ namespace PeriDEAL
                 }
             if (!state_based)
               return;
-            double       t[dim], G_j[dim] = {};
+            double       t[dim];
             const double a_i = BondKernel::dilatation_stiffness(a, s_i);
             const double a_j = BondKernel::dilatation_stiffness(a, s_j);
             for (unsigned int p = 0; p < dim; ++p)
@@ -275,20 +299,7 @@ namespace PeriDEAL
                 G_i[p] += g * n_ij[p];
                 t[p] = a_j * n_ij[p];
               }
-            theta_entries(layout.node_of_slot(slot_j),
-                          key_j,
-                          [&](const std::ptrdiff_t key_q, const double *gn) {
-                            Tensor<2, dim> &target = block[key_q];
-                            for (unsigned int q = 0; q < dim; ++q)
-                              {
-                                G_j[q] += gn[q];
-                                for (unsigned int p = 0; p < dim; ++p)
-                                  target[p][q] += t[p] * gn[q];
-                              }
-                          });
-            for (unsigned int p = 0; p < dim; ++p)
-              for (unsigned int q = 0; q < dim; ++q)
-                block[key_j][p][q] -= t[p] * G_j[q];
+            add_theta_row(layout.node_of_slot(slot_j), key_j, t, block);
           });
         if (!state_based)
           return;
@@ -332,40 +343,21 @@ namespace PeriDEAL
                     }
                 }
             }
-          const auto add_theta = [&](const unsigned int   j,
-                                     const std::ptrdiff_t key_j,
-                                     const double        *factor) {
-            // factor (x) d theta_j / du.
-            Tensor<1, dim> G_j;
-            theta_entries(j,
-                          key_j,
-                          [&](const std::ptrdiff_t key_q, const double *gn) {
-                            Tensor<2, dim> &target = block[key_q];
-                            for (unsigned int q = 0; q < dim; ++q)
-                              {
-                                G_j[q] += gn[q];
-                                for (unsigned int p = 0; p < dim; ++p)
-                                  target[p][q] += factor[p] * gn[q];
-                              }
-                          });
-            for (unsigned int p = 0; p < dim; ++p)
-              for (unsigned int q = 0; q < dim; ++q)
-                block[key_j][p][q] -= factor[p] * G_j[q];
-          };
           for (std::size_t k = 0; k < n_row; ++k)
             {
               double factor[dim];
               for (unsigned int p = 0; p < dim; ++p)
                 factor[p] = collocation_row.kf[p][k];
-              add_theta(layout.node_of_slot(layout.slot[i] +
-                                            collocation_row.offset[k]),
-                        key_i + box_delta[collocation_row.stencil_index[k]],
-                        factor);
+              add_theta_row(layout.node_of_slot(layout.slot[i] +
+                                                collocation_row.offset[k]),
+                            key_i + box_delta[collocation_row.stencil_index[k]],
+                            factor,
+                            block);
             }
           double minus_sum[dim];
           for (unsigned int p = 0; p < dim; ++p)
             minus_sum[p] = -k_sum[p];
-          add_theta(i, key_i, minus_sum);
+          add_theta_row(i, key_i, minus_sum, block);
         };
 
       // The positive diagonal kept in the row of a prescribed DoF: the

@@ -54,11 +54,16 @@ namespace PeriDEAL
               stencil_index.push_back(k);
             }
         }
-      const Quadrature::CollocationFit<dim> fit(settings.order,
-                                                settings.n_collocation,
-                                                horizon);
-      const std::vector<unsigned int>       selected = fit.select(family);
-      std::vector<Tensor<1, dim>>           cloud;
+      // Stabilised order-4 rows (doc/collocation.md Sect. 7.1): bond-based
+      // only so far; the state-based rows are the paper's.
+      const double gamma = state_based ? 0. : settings.stabilisation();
+      const Quadrature::CollocationFit<dim> fit(
+        settings.order,
+        settings.n_collocation,
+        horizon,
+        (state_based ? 1. : settings.weight_radius_factor()) * horizon);
+      const std::vector<unsigned int> selected = fit.select(family);
+      std::vector<Tensor<1, dim>>     cloud;
       for (const unsigned int j : selected)
         cloud.push_back(family[j]);
 
@@ -97,8 +102,18 @@ namespace PeriDEAL
           return 2. * model->extension_constant(r, horizon) * s_continuum;
         },
         horizon);
-      const std::vector<Tensor<2, dim>> row =
-        Quadrature::tensor_row(moments, q);
+      std::vector<Tensor<2, dim>> row = Quadrature::tensor_row(moments, q);
+      if (gamma > 0)
+        Quadrature::add_stabilisation<dim>(
+          row,
+          fit.basis(),
+          cloud,
+          q,
+          [&](const double r) {
+            return 2. * model->extension_constant(r, horizon);
+          },
+          horizon,
+          gamma);
       std::vector<Tensor<1, dim>> theta_row, kf_row;
       if (state_based)
         {
@@ -219,7 +234,10 @@ namespace PeriDEAL
                     "growing modes (largest eigenvalue " +
                       format_number(report.symbol) +
                       " of the most negative; doc/collocation.md Sect. 7): "
-                      "the static operator is indefinite. Use 'Order = 2'"));
+                      "the static operator is indefinite. Use 'Order = 2'" +
+                      std::string(settings.stabilised || state_based ?
+                                    "" :
+                                    ", or 'Stabilisation = automatic'")));
 
       std::size_t n_collocation_nodes = 0, n_fixed_standard = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)

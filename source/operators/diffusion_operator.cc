@@ -46,8 +46,9 @@ namespace PeriDEAL
               stencil_sum += mu;
             }
         }
-      collocation  = false;
-      symbol       = 0;
+      collocation = false;
+      symbol      = 0;
+      row_node.assign(nodes->n_owned(), false);
       bulk_offset  = layout.stencil_offset;
       bulk_mu      = stencil_mu;
       bulk_sum     = stencil_sum;
@@ -147,7 +148,8 @@ namespace PeriDEAL
           const unsigned char p = phase_slot[layout.slot[i]];
           const bool          intact =
             bond_state == nullptr || !bond_state->any_broken(i);
-          if (layout.use_lattice && lists->has_full_stencil(i) && intact)
+          if (layout.use_lattice && lists->has_full_stencil(i) && intact &&
+              !row_node[i])
             {
               largest_geometric_sum =
                 std::max(largest_geometric_sum, bulk_abs_sum);
@@ -174,9 +176,12 @@ namespace PeriDEAL
           const auto add = [&](const unsigned int k,
                                const std::size_t  slot_j,
                                const double       mu) {
-            if (bond_state != nullptr && bond_state->is_broken(i, k))
+            // A collocation row's entries are not bonds (its node has
+            // none broken), and its weights may be negative.
+            if (!row_node[i] && bond_state != nullptr &&
+                bond_state->is_broken(i, k))
               return;
-            geometric += mu;
+            geometric += std::abs(mu);
             const unsigned char q = phase_slot[slot_j];
             const double        f = factor[p * n_phases + q];
             const double        r = rate.empty() ? 0. : rate[p * n_phases + q];
@@ -191,7 +196,7 @@ namespace PeriDEAL
               {static_cast<unsigned int>(slot_j), gated, f * mu, r * mu});
             sum += f * mu;
           };
-          if (layout.use_lattice && lists->has_full_stencil(i))
+          if (layout.use_lattice && lists->has_full_stencil(i) && !row_node[i])
             for (unsigned int k = 0; k < stencil_mu.size(); ++k)
               add(k, layout.slot[i] + layout.stencil_offset[k], stencil_mu[k]);
           else
@@ -479,11 +484,13 @@ namespace PeriDEAL
               stencil_index.push_back(k);
             }
         }
-      const Quadrature::CollocationFit<dim> fit(settings.order,
-                                                settings.n_collocation,
-                                                horizon);
-      const std::vector<unsigned int>       selected = fit.select(family);
-      std::vector<Tensor<1, dim>>           cloud;
+      const Quadrature::CollocationFit<dim> fit(
+        settings.order,
+        settings.n_collocation,
+        horizon,
+        settings.weight_radius_factor() * horizon);
+      const std::vector<unsigned int> selected = fit.select(family);
+      std::vector<Tensor<1, dim>>     cloud;
       for (const unsigned int j : selected)
         cloud.push_back(family[j]);
       AssertThrow(
@@ -518,7 +525,16 @@ namespace PeriDEAL
         fit.basis(),
         [&](const double r) { return kernel->conductance(r); },
         horizon);
-      const std::vector<double> row = Quadrature::scalar_row(moments, q);
+      std::vector<double> row = Quadrature::scalar_row(moments, q);
+      if (settings.stabilisation() > 0)
+        Quadrature::add_stabilisation<dim>(
+          row,
+          fit.basis(),
+          cloud,
+          q,
+          [&](const double r) { return kernel->conductance(r); },
+          horizon,
+          settings.stabilisation());
       {
         std::vector<Tensor<2, dim>> blocks;
         for (const double w : row)
@@ -557,9 +573,99 @@ namespace PeriDEAL
                     "the bulk collocation row of this order at this m-ratio "
                     "weighs its own node against its neighbours (a "
                     "non-positive diagonal; doc/collocation.md Sect. 7): "
-                    "the operator has growing modes. Use 'Order = 2'"));
+                    "the operator has growing modes. Use 'Order = 2'" +
+                      std::string(settings.stabilised ?
+                                    "" :
+                                    ", or 'Stabilisation = automatic'")));
       build_work_lists();
       return condition;
+    }
+
+
+    template <int dim>
+    CollocationReport
+    DiffusionOperator<dim>::use_collocation_per_node(
+      const Quadrature::CollocationSettings &settings)
+    {
+      AssertThrow(!with_phases,
+                  ExcMessage("DiffusionOperator: the collocation quadrature "
+                             "takes no phases."));
+      if constexpr (dim == 1)
+        {
+          (void)settings;
+          AssertThrow(false,
+                      ExcMessage("DiffusionOperator: collocation rows per "
+                                 "node are built in 2D and 3D."));
+          return CollocationReport();
+        }
+      else
+        {
+          const unsigned int n_owned = nodes->n_owned();
+          const double       horizon = kernel->get_horizon();
+          // Nodes with a broken (insulating) bond keep their bonds.
+          std::vector<bool> standard(n_owned, false);
+          if (bond_state != nullptr)
+            for (unsigned int i = 0; i < n_owned; ++i)
+              standard[i] = bond_state->any_broken(i);
+          const Quadrature::CollocationFit<dim> fit(
+            settings.order,
+            settings.n_collocation,
+            horizon,
+            settings.weight_radius_factor() * horizon);
+          const auto conductance = [&](const double r) {
+            return kernel->conductance(r);
+          };
+          const auto moments =
+            Quadrature::scalar_moments<dim>(fit.basis(), conductance, horizon);
+          NodeRowFits<dim, double> fits;
+          const CollocationReport  report = fit_node_rows<dim, double>(
+            *nodes,
+            *lists,
+            horizon,
+            settings,
+            fit,
+            standard,
+            [&](const unsigned int,
+                const std::vector<Tensor<1, dim>> &cloud,
+                const FullMatrix<double>          &q) {
+              std::vector<double> row = Quadrature::scalar_row(moments, q);
+              if (settings.stabilisation() > 0)
+                Quadrature::add_stabilisation<dim>(row,
+                                                   fit.basis(),
+                                                   cloud,
+                                                   q,
+                                                   conductance,
+                                                   horizon,
+                                                   settings.stabilisation());
+              return row;
+            },
+            fits);
+
+          // The rows replace the stored bonds of their nodes.
+          std::vector<std::size_t> first(1, 0);
+          std::vector<ListBond>    bonds;
+          for (unsigned int i = 0; i < n_owned; ++i)
+            {
+              row_node[i] = fits.has_row[i];
+              if (fits.has_row[i])
+                for (unsigned int k = 0; k < fits.neighbors[i].size(); ++k)
+                  bonds.push_back({static_cast<unsigned int>(
+                                     layout.slot[fits.neighbors[i][k]]),
+                                   0,
+                                   fits.weights[i][k],
+                                   0.});
+              else
+                bonds.insert(bonds.end(),
+                             stored_bonds.begin() + stored_first[i],
+                             stored_bonds.begin() + stored_first[i + 1]);
+              first.push_back(bonds.size());
+            }
+          stored_first.swap(first);
+          stored_bonds.swap(bonds);
+          collocation = report.n_collocation_nodes > 0;
+          build_work_lists();
+          return report;
+        }
     }
 
 

@@ -155,13 +155,15 @@ namespace PeriDEAL
     template <int dim>
     CollocationFit<dim>::CollocationFit(const unsigned int order,
                                         const unsigned int n_collocation,
-                                        const double       horizon)
+                                        const double       horizon,
+                                        const double       weight_radius)
       : monomials(order)
       , k_a(auxiliary_divisions(dim,
                                 n_collocation > 0 ?
                                   n_collocation :
                                   default_collocation_nodes(dim, order)))
       , horizon(horizon)
+      , weight_radius(weight_radius > 0 ? weight_radius : horizon)
     {}
 
 
@@ -169,8 +171,8 @@ namespace PeriDEAL
     double
     CollocationFit<dim>::weight(const Tensor<1, dim> &xi) const
     {
-      // Eq. 36 with r~ = delta: (e^{-16 s^2} - e^{-64}) / (1 - e^{-64}).
-      const double s2 = xi.norm_square() / (horizon * horizon);
+      // Eq. 36: (e^{-16 s^2} - e^{-64}) / (1 - e^{-64}), s = |xi| / r~.
+      const double s2 = xi.norm_square() / (weight_radius * weight_radius);
       return (std::exp(-16. * s2) - std::exp(-64.)) / (1. - std::exp(-64.));
     }
 
@@ -415,6 +417,56 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<double>
+    stabilisation_row(const MonomialBasis<dim>            &basis,
+                      const std::vector<Tensor<1, dim>>   &cloud,
+                      const FullMatrix<double>            &q,
+                      const std::function<double(double)> &kernel,
+                      const double                         horizon)
+    {
+      const unsigned int n_c = cloud.size(), n_p = basis.size();
+      AssertThrow(q.m() == n_p && q.n() == n_c && n_c > 1, ExcInternalError());
+      const double ball = (dim == 1 ? 2. :
+                           dim == 2 ? M_PI :
+                                      4. / 3. * M_PI) *
+                          std::pow(horizon, dim);
+      // v: the positive-weight sum, the node itself weighing minus the
+      // others.
+      std::vector<double> v(n_c, 0.);
+      int                 self  = -1;
+      double              total = 0;
+      for (unsigned int j = 0; j < n_c; ++j)
+        {
+          const double r = cloud[j].norm();
+          if (r == 0)
+            {
+              self = j;
+              continue;
+            }
+          v[j] = kernel(r) * ball / (n_c - 1);
+          total += v[j];
+        }
+      AssertThrow(self >= 0,
+                  ExcMessage("stabilisation_row(): the cloud must hold its "
+                             "node (the zero vector)"));
+      v[self] = -total;
+      // T = v - Q^T (M^T v).
+      std::vector<double> mv(n_p, 0.), p(n_p);
+      for (unsigned int l = 0; l < n_c; ++l)
+        {
+          basis.evaluate(cloud[l], p.data());
+          for (unsigned int a = 0; a < n_p; ++a)
+            mv[a] += v[l] * p[a];
+        }
+      std::vector<double> t(v);
+      for (unsigned int j = 0; j < n_c; ++j)
+        for (unsigned int a = 0; a < n_p; ++a)
+          t[j] -= q(a, j) * mv[a];
+      return t;
+    }
+
+
+    template <int dim>
     double
     largest_symbol_eigenvalue(const std::vector<Tensor<1, dim>> &xi,
                               const std::vector<Tensor<2, dim>> &blocks,
@@ -492,6 +544,12 @@ namespace PeriDEAL
   template std::vector<Tensor<2, dim>> tensor_row<dim>(                      \
     const std::vector<Tensor<2, dim>> &,                                     \
     const FullMatrix<double> &);                                             \
+  template std::vector<double> stabilisation_row<dim>(                       \
+    const MonomialBasis<dim> &,                                              \
+    const std::vector<Tensor<1, dim>> &,                                     \
+    const FullMatrix<double> &,                                              \
+    const std::function<double(double)> &,                                   \
+    const double);                                                           \
   template double largest_symbol_eigenvalue<dim>(                            \
     const std::vector<Tensor<1, dim>> &,                                     \
     const std::vector<Tensor<2, dim>> &,                                     \

@@ -83,6 +83,18 @@ namespace PeriDEAL
           "What a node does whose moment matrix has a condition number "
           "above 1e12: 'fall back' to the standard scheme (counted and "
           "reported) or stop the run ('error').");
+        prm.declare_entry(
+          "Stabilisation",
+          "automatic",
+          Patterns::Selection("automatic|none"),
+          "'automatic': the order-4 rows, which as the paper gives them have "
+          "growing modes (no explicit time stepping, an indefinite static "
+          "operator), are fitted with the weight radius 1.5 delta and carry "
+          "the consistent stabilisation term gamma T, gamma = 1.25, which "
+          "vanishes on every quartic, so the rows stay exact "
+          "(doc/collocation.md Sect. 7.1); orders 2 and 6 are stable as the "
+          "paper gives them and stay unchanged. 'none': the paper's rows for "
+          "every order. The state-based (LPS) rows are not stabilised yet.");
       }
 
 
@@ -117,7 +129,21 @@ namespace PeriDEAL
               std::to_string(n_p) + ", or 0 for the default (" +
               std::to_string(default_collocation_nodes(dim, settings.order)) +
               ")"));
-        settings.fall_back = prm.get("Ill-conditioned clouds") == "fall back";
+        settings.fall_back  = prm.get("Ill-conditioned clouds") == "fall back";
+        settings.stabilised = prm.get("Stabilisation") == "automatic";
+      }
+
+
+      /// Entries of 'Quadrature/collocation' that @p settings leave
+      /// without effect.
+      std::vector<std::pair<std::string, std::string>>
+      collocation_unused_entries(const CollocationSettings &settings)
+      {
+        if (settings.order == 4)
+          return {};
+        return {{"Quadrature/collocation/Stabilisation",
+                 "only the order-4 rows are stabilised (orders 2 and 6 are "
+                 "stable as the paper gives them); remove the entry"}};
       }
 
 
@@ -158,6 +184,12 @@ namespace PeriDEAL
         collocation() const override
         {
           return &settings;
+        }
+
+        std::vector<std::pair<std::string, std::string>>
+        unused_entries() const override
+        {
+          return collocation_unused_entries(settings);
         }
 
       private:
@@ -282,7 +314,8 @@ namespace PeriDEAL
         std::vector<std::pair<std::string, std::string>>
         unused_entries() const override
         {
-          std::vector<std::pair<std::string, std::string>> unused;
+          std::vector<std::pair<std::string, std::string>> unused =
+            collocation_unused_entries(collocation_settings);
           const std::string path = "Quadrature/hybrid/";
           if (unused_fixed)
             for (const char *entry :

@@ -230,10 +230,17 @@ group_collocation() {
   # auxiliary grid has 13 points.
   expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n    set Collocation nodes = 15\n  end' "$gmres")" \
     "Invalid value '15' for the parameter 'Quadrature/collocation/Collocation nodes': the auxiliary grid for it gives 13 collocation nodes" 2
-  # The order-4 row at m = 3 weighs its own node against its neighbours
-  # (doc/collocation.md Sect. 7): an indefinite static operator.
-  expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n  end' "$gmres")" \
-    "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal"
+  # The paper's order-4 row at m = 3 weighs its own node against its
+  # neighbours (doc/collocation.md Sect. 7): an indefinite static operator;
+  # the stabilised one (the default, Sect. 7.1) runs.
+  expect_error "$bb; $(col '  subsection collocation\n    set Order = 4\n    set Stabilisation = none\n  end' "$gmres")" \
+    "Invalid value '4' for the parameter 'Quadrature/collocation/Order': the bulk collocation row of this order at this m-ratio has a non-positive diagonal (its own node weighs against its neighbours), and its Fourier symbol has growing modes"
+  sed "$bb; $(col '  subsection collocation\n    set Order = 4\n  end' "$gmres")" base.prm > collocation_c4.prm
+  expect_valid 1 collocation_c4.prm "collocation, bond-based, stabilised order 4, GMRES" out/solution_0.pvtu
+  rm -rf out
+  # 'Stabilisation' acts on order 4 only: an entry without effect otherwise.
+  expect_error "$bb; $(col '  subsection collocation\n    set Stabilisation = none\n  end' "$gmres")" \
+    "Invalid value 'none' for the parameter 'Quadrature/collocation/Stabilisation': this entry has no effect here: only the order-4 rows are stabilised"
   # LPS collocation rows run (matrix-free GMRES here).
   sed "$(col '' "$gmres")" base.prm > collocation_lps.prm
   expect_valid 1 collocation_lps.prm "collocation, LPS, GMRES" out/solution_0.pvtu

@@ -11,6 +11,7 @@
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
 #include <perideal/operators/bond/bond_kernel.h>
+#include <perideal/operators/collocation_node_rows.h>
 #include <perideal/operators/loop_layout.h>
 #include <perideal/quadrature/quadrature_scheme.h>
 
@@ -231,41 +232,8 @@ namespace PeriDEAL
                TrilinosWrappers::MPI::Vector   *rhs         = nullptr) const;
 
       /// Reference weighted volume \f$m_i\f$ of every node with a list.
-      /**
-       * What use_collocation() did: how many owned nodes (of all
-       * processes) it evaluates by collocation and how many stay standard
-       * because their ball is cut by the surface or their cloud is
-       * ill-conditioned, and the shared bulk row's size, conditioning and
-       * stability.
-       */
-      struct CollocationReport
-      {
-        /// Owned nodes of all processes evaluated by collocation.
-        std::size_t n_collocation_nodes = 0;
-        /// Owned nodes that keep the standard scheme because their
-        /// neighbourhood is not a full ball inside the body and its layers.
-        std::size_t n_cut_nodes = 0;
-        /// Owned nodes that fell back to the standard scheme because the
-        /// cloud's cond(A) exceeds CollocationSettings::condition_limit.
-        std::size_t n_ill_conditioned = 0;
-        /// Owned full-stencil nodes kept standard because the caller said
-        /// so (the fixed standard region of the hybrid scheme).
-        std::size_t n_fixed_standard = 0;
-        /// The shared bulk row: collocation nodes n_c (the node itself
-        /// included), monomials n_p, cond_2(A).
-        unsigned int n_collocation = 0, n_monomials = 0;
-        /// Rows per node (irregular nodes): n_collocation is then the
-        /// largest cloud, n_collocation_min the smallest, and condition
-        /// the largest cond_2(A) of the nodes' clouds.
-        bool         per_node          = false;
-        unsigned int n_collocation_min = 0;
-        double       condition         = 0;
-        /// The largest eigenvalue of the bulk row's Fourier symbol over
-        /// the magnitude of the most negative one
-        /// (Quadrature::largest_symbol_eigenvalue()): > 0 means growing
-        /// modes (an indefinite static operator).
-        double symbol = 0;
-      };
+      /// What use_collocation() and use_collocation_per_node() did.
+      using CollocationReport = Operators::CollocationReport;
 
       /**
        * Evaluate every owned node whose neighbourhood is the full lattice

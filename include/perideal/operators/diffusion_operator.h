@@ -10,6 +10,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/diffusion_kernel.h>
+#include <perideal/operators/collocation_node_rows.h>
 #include <perideal/operators/loop_layout.h>
 #include <perideal/quadrature/quadrature_scheme.h>
 
@@ -85,7 +86,21 @@ namespace PeriDEAL
       double
       use_collocation(const Quadrature::CollocationSettings &settings);
 
-      /// Whether the bulk uses the collocation row (use_collocation()).
+      /**
+       * The collocation quadrature off the lattice (irregular nodes,
+       * 'Geometry/Node perturbation'; doc/collocation.md Sect. 11.1): every
+       * owned node whose ball lies in the body and its layers, and none of
+       * whose bonds is broken, gets a row of its own, fitted to its own
+       * cloud (fit_node_rows()), \f$(LC)_i = \sum_j w_{ij} (C_j - C_i)\f$
+       * over the cloud in its order; the other nodes keep the standard
+       * scheme. Ill-conditioned clouds fall back or stop the run as
+       * @p settings say. Collective.
+       */
+      CollocationReport
+      use_collocation_per_node(const Quadrature::CollocationSettings &settings);
+
+      /// Whether the bulk or single nodes use collocation rows
+      /// (use_collocation(), use_collocation_per_node()).
       bool
       uses_collocation() const
       {
@@ -282,6 +297,9 @@ namespace PeriDEAL
       // changes or broken bonds evaluates no kernel and looks nothing up.
       std::vector<std::size_t> stored_first; // per owned node, size + 1
       std::vector<ListBond>    stored_bonds;
+      // Per owned node: whether its stored bonds are a collocation row of
+      // its own (use_collocation_per_node()), not bonds.
+      std::vector<bool> row_node;
       // The bonds of the q-th list node of work() (in bond order):
       // [list_bond_first[q], list_bond_first[q + 1]) of list_bonds.
       std::vector<std::size_t> list_bond_first;

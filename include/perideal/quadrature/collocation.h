@@ -119,12 +119,15 @@ namespace PeriDEAL
     public:
       /**
        * @p order: 2, 4 (or 6 in 1D); @p n_collocation: the requested count
-       * (0: the default); @p horizon: \f$\delta\f$, also the weight radius
-       * \f$\tilde r\f$ of Eq. 36 and the length that scales the basis.
+       * (0: the default); @p horizon: \f$\delta\f$, the radius of the
+       * auxiliary grid and the length that scales the basis;
+       * @p weight_radius: \f$\tilde r\f$ of Eq. 36 (0: the horizon, the
+       * paper's choice; CollocationSettings::weight_radius_factor()).
        */
       CollocationFit(const unsigned int order,
                      const unsigned int n_collocation,
-                     const double       horizon);
+                     const double       horizon,
+                     const double       weight_radius = 0);
 
       /// The basis.
       const MonomialBasis<dim> &
@@ -161,7 +164,7 @@ namespace PeriDEAL
       double
       fit(const std::vector<Tensor<1, dim>> &xi, FullMatrix<double> &q) const;
 
-      /// The weight of Eq. 36 with \f$\tilde r = \delta\f$.
+      /// The weight of Eq. 36 with the weight radius \f$\tilde r\f$.
       double
       weight(const Tensor<1, dim> &xi) const;
 
@@ -169,6 +172,7 @@ namespace PeriDEAL
       MonomialBasis<dim> monomials;
       unsigned int       k_a;
       double             horizon;
+      double             weight_radius;
     };
 
 
@@ -244,6 +248,75 @@ namespace PeriDEAL
     /// A row's scalar weights: w_j = sum_alpha L[alpha] Q[alpha, j].
     std::vector<double>
     scalar_row(const std::vector<double> &moments, const FullMatrix<double> &q);
+
+    /**
+     * The stabilisation row of a cloud (doc/collocation.md Sect. 7.1):
+     * \f$T = v - Q^T M^T v\f$, where \f$v_j = g(|\xi_j|)\,V_B/(n_c - 1)\f$
+     * for the cloud's nodes (@p kernel g, V_B the ball's volume),
+     * \f$v_0 = -\sum_j v_j\f$ for the node itself (the zero vector of
+     * @p cloud), \f$M_{l\alpha} = P_\alpha(\xi_l)\f$ and @p q the fit
+     * Q_i of the cloud. T applied to a field is a positive-weight sum of
+     * its differences minus the same sum of its fitted polynomial's
+     * differences: zero for every field the fit reproduces (degree <= k),
+     * so adding gamma T to a row keeps it exact, and about the
+     * positive-weight sum itself for grid-scale waves, which the fit hardly
+     * sees. Sum_j T_j = 0.
+     */
+    template <int dim>
+    std::vector<double>
+    stabilisation_row(const MonomialBasis<dim>            &basis,
+                      const std::vector<Tensor<1, dim>>   &cloud,
+                      const FullMatrix<double>            &q,
+                      const std::function<double(double)> &kernel,
+                      const double                         horizon);
+
+
+    /**
+     * Add the stabilisation term gamma T of stabilisation_row() to a scalar
+     * row (diffusion: @p kernel the conductance), ...
+     */
+    template <int dim>
+    void
+    add_stabilisation(std::vector<double>                 &row,
+                      const MonomialBasis<dim>            &basis,
+                      const std::vector<Tensor<1, dim>>   &cloud,
+                      const FullMatrix<double>            &q,
+                      const std::function<double(double)> &kernel,
+                      const double                         horizon,
+                      const double                         gamma)
+    {
+      const std::vector<double> t =
+        stabilisation_row<dim>(basis, cloud, q, kernel, horizon);
+      for (unsigned int j = 0; j < row.size(); ++j)
+        row[j] += gamma * t[j];
+    }
+
+
+    /**
+     * ... or gamma T_j times the identity to the d x d blocks of an
+     * elasticity row, with the kernel g(r)/d for the pair stiffness
+     * g(r) n (x) n (@p stiffness; the trace of the block over d).
+     */
+    template <int dim>
+    void
+    add_stabilisation(std::vector<Tensor<2, dim>>         &row,
+                      const MonomialBasis<dim>            &basis,
+                      const std::vector<Tensor<1, dim>>   &cloud,
+                      const FullMatrix<double>            &q,
+                      const std::function<double(double)> &stiffness,
+                      const double                         horizon,
+                      const double                         gamma)
+    {
+      const std::vector<double> t = stabilisation_row<dim>(
+        basis,
+        cloud,
+        q,
+        [&](const double r) { return stiffness(r) / dim; },
+        horizon);
+      for (unsigned int j = 0; j < row.size(); ++j)
+        for (unsigned int c = 0; c < dim; ++c)
+          row[j][c][c] += gamma * t[j];
+    }
 
     /**
      * The largest eigenvalue of the Fourier symbol

@@ -33,6 +33,28 @@ namespace PeriDEAL
       /// Whether an ill-conditioned cloud falls back to the standard
       /// scheme (true) or stops the run (false).
       bool fall_back = true;
+      /// 'Stabilisation = automatic': the order-4 rows are fitted with the
+      /// wider weight and carry the stabilisation term (doc/collocation.md
+      /// Sect. 7.1), which removes their growing modes; 'none': the
+      /// paper's rows for every order.
+      bool stabilised = true;
+
+      /// The weight radius of Eq. 36 over the horizon: 1.5 for stabilised
+      /// order-4 rows, otherwise 1 (the paper's).
+      double
+      weight_radius_factor() const
+      {
+        return stabilised && order == 4 ? 1.5 : 1.;
+      }
+
+      /// The factor gamma of the stabilisation term
+      /// (Quadrature::stabilisation_row()): 1.25 for stabilised order-4
+      /// rows, otherwise 0.
+      double
+      stabilisation() const
+      {
+        return stabilised && order == 4 ? 1.25 : 0.;
+      }
       /// The largest cond_2(A_i) accepted (doc/collocation.md Sect. 7: the
       /// fit then loses at most about sqrt(1e12) eps ~ 1e-10 of its
       /// reproduction accuracy).

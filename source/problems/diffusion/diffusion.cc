@@ -148,13 +148,41 @@ namespace PeriDEAL
       if (const auto *settings =
             simulator.get_quadrature_scheme().collocation())
         {
-          const double condition = op.use_collocation(*settings);
-          // Growing modes (doc/collocation.md Sect. 7) blow up any explicit
-          // step.
-          AssertThrow(
-            op.collocation_symbol() <= 1e-10 ||
-              integrator->solves_linear_systems(),
-            ExcInvalidInput("Quadrature/collocation/Order",
+          std::ostringstream line;
+          line << "quadrature '" << simulator.get_quadrature_scheme_name()
+               << "': order " << settings->order << ", ";
+          if (simulator.get_node_perturbation() > 0)
+            {
+              // Irregular nodes: a row per node. Without a shared row there
+              // is no symbol to check; growing modes of single rows show in
+              // the power-method estimate of the time step below.
+              const Operators::CollocationReport report =
+                op.use_collocation_per_node(*settings);
+              line << "a row per node (irregular nodes), ";
+              if (report.n_collocation_nodes > 0)
+                line << report.n_collocation_min << " to "
+                     << report.n_collocation << " collocation nodes (";
+              else
+                line << "none fitted (";
+              line << report.n_monomials << " monomials), cond(A) up to "
+                   << std::setprecision(2) << std::scientific
+                   << report.condition << std::defaultfloat << "; "
+                   << report.n_collocation_nodes << " nodes by collocation, "
+                   << report.n_fixed_standard << " standard (insulating bond), "
+                   << report.n_cut_nodes
+                   << " standard (ball cut by the surface), "
+                   << report.n_ill_conditioned
+                   << " standard (ill-conditioned or indefinite cloud)";
+            }
+          else
+            {
+              const double condition = op.use_collocation(*settings);
+              // Growing modes (doc/collocation.md Sect. 7) blow up any
+              // explicit step.
+              AssertThrow(op.collocation_symbol() <= 1e-10 ||
+                            integrator->solves_linear_systems(),
+                          ExcInvalidInput(
+                            "Quadrature/collocation/Order",
                             std::to_string(settings->order),
                             "the bulk collocation row of this order at this "
                             "m-ratio has growing modes (largest symbol "
@@ -162,17 +190,18 @@ namespace PeriDEAL
                               format_number(op.collocation_symbol()) +
                               " of the most negative; doc/collocation.md Sect. "
                               "7), which explicit time stepping amplifies at "
-                              "any step; use 'Order = 2' or implicit time "
-                              "stepping"));
-          std::ostringstream line;
-          line << "quadrature '" << simulator.get_quadrature_scheme_name()
-               << "': order " << settings->order << ", "
-               << (op.uses_collocation() ?
-                     std::to_string(op.n_collocation_nodes()) +
-                       " collocation nodes, cond(A) " :
-                     std::string("the bulk stays standard: cond(A) "))
-               << std::setprecision(2) << std::scientific << condition
-               << std::defaultfloat;
+                              "any step; use 'Order = 2'" +
+                              std::string(settings->stabilised ?
+                                            "" :
+                                            ", 'Stabilisation = automatic'") +
+                              " or implicit time stepping"));
+              line << (op.uses_collocation() ?
+                         std::to_string(op.n_collocation_nodes()) +
+                           " collocation nodes, cond(A) " :
+                         std::string("the bulk stays standard: cond(A) "))
+                   << std::setprecision(2) << std::scientific << condition
+                   << std::defaultfloat;
+            }
           simulator.print_progress(line.str());
         }
       for (auto *v : {&c, &lc, &s, &rhs, &row_sum})

@@ -319,12 +319,12 @@ namespace PeriDEAL
       if (simulator.get_quadrature_scheme().collocation() == nullptr)
         return;
       const std::string &scheme = simulator.get_quadrature_scheme_name();
-      AssertThrow(simulator.get_node_perturbation() == 0,
+      AssertThrow(dim > 1 || simulator.get_node_perturbation() == 0,
                   ExcInvalidInput(
                     "Geometry/Node perturbation",
                     format_number(simulator.get_node_perturbation()),
-                    "the diffusion operator's collocation rows are built "
-                    "for nodes at the cell centres (one shared row) so far; "
+                    "the diffusion operator's collocation rows on perturbed "
+                    "nodes (a row per node) are built in 2D and 3D; in 1D "
                     "set 0, or 'Quadrature/Scheme = standard' (which runs on "
                     "perturbed nodes)"));
       AssertThrow(model->supports_collocation(),

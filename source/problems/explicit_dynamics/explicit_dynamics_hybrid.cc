@@ -80,7 +80,10 @@ namespace PeriDEAL
                       format_number(report.symbol) +
                       " of the most negative; doc/collocation.md Sect. 7), "
                       "which explicit time stepping amplifies at any step; "
-                      "use 'Order = 2'"));
+                      "use 'Order = 2'" +
+                      std::string(settings.stabilised ?
+                                    "" :
+                                    ", or 'Stabilisation = automatic'")));
       n_total_nodes    = simulator.get_summary().n_nodes;
       n_standard_nodes = n_total_nodes - report.n_collocation_nodes;
       n_switch_scans   = 0;
