@@ -607,11 +607,16 @@ namespace PeriDEAL
           if (bond_state != nullptr)
             for (unsigned int i = 0; i < n_owned; ++i)
               standard[i] = bond_state->any_broken(i);
+          // Rows per node take the stabilised form for order 2 as well
+          // (doc/collocation.md Sect. 7.2); the same choice as
+          // BondOperator::use_collocation_per_node().
+          const bool   stabilise = settings.stabilised && settings.order <= 4;
+          const double gamma     = stabilise ? 1.25 : settings.stabilisation();
           const Quadrature::CollocationFit<dim> fit(
             settings.order,
             settings.n_collocation,
             horizon,
-            settings.weight_radius_factor() * horizon);
+            (stabilise ? 1.5 : settings.weight_radius_factor()) * horizon);
           const auto conductance = [&](const double r) {
             return kernel->conductance(r);
           };
@@ -629,14 +634,14 @@ namespace PeriDEAL
                 const std::vector<Tensor<1, dim>> &cloud,
                 const FullMatrix<double>          &q) {
               std::vector<double> row = Quadrature::scalar_row(moments, q);
-              if (settings.stabilisation() > 0)
+              if (gamma > 0)
                 Quadrature::add_stabilisation<dim>(row,
                                                    fit.basis(),
                                                    cloud,
                                                    q,
                                                    conductance,
                                                    horizon,
-                                                   settings.stabilisation());
+                                                   gamma);
               return row;
             },
             fits);

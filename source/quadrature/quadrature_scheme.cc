@@ -92,9 +92,12 @@ namespace PeriDEAL
           "operator), are fitted with the weight radius 1.5 delta and carry "
           "the consistent stabilisation term gamma T, gamma = 1.25, which "
           "vanishes on every quartic, so the rows stay exact "
-          "(doc/collocation.md Sect. 7.1); orders 2 and 6 are stable as the "
-          "paper gives them and stay unchanged. 'none': the paper's rows for "
-          "every order. The state-based (LPS) rows are not stabilised yet.");
+          "(doc/collocation.md Sect. 7.1); so are the order-2 rows of "
+          "perturbed nodes ('Geometry/Node perturbation', a row per node), "
+          "which otherwise have node-local growing modes (Sect. 7.2). The "
+          "order-2 row of a uniform grid and order 6 are stable as the paper "
+          "gives them and stay unchanged. 'none': the paper's rows for every "
+          "order. The state-based (LPS) rows are not stabilised yet.");
       }
 
 
@@ -139,11 +142,11 @@ namespace PeriDEAL
       std::vector<std::pair<std::string, std::string>>
       collocation_unused_entries(const CollocationSettings &settings)
       {
-        if (settings.order == 4)
+        if (settings.order <= 4)
           return {};
         return {{"Quadrature/collocation/Stabilisation",
-                 "only the order-4 rows are stabilised (orders 2 and 6 are "
-                 "stable as the paper gives them); remove the entry"}};
+                 "order 6 is stable as the paper gives it and is not "
+                 "stabilised; remove the entry"}};
       }
 
 
