@@ -69,7 +69,12 @@ for name in plate2d_standard plate2d_hybrid block3d_standard block3d_hybrid; do
   fi
   echo "${name%_*},${name##*_},$nodes,$(log_field "$log" steps),$(log_field "$log" loop),${switch:-0},$broken,$standard,$scans,$late" >> "$csv"
 done
-column -s, -t < "$csv"
+# The table on the terminal (awk: 'column' is not on a minimal Debian).
+awk -F, '{ for (k = 1; k <= NF; ++k) { c[NR, k] = $k; if (length($k) > w[k]) w[k] = length($k) }
+           if (NF > n) n = NF }
+         END { for (r = 1; r <= NR; ++r) { line = ""
+                 for (k = 1; k <= n; ++k) line = line sprintf("%-*s  ", w[k], c[r, k])
+                 print line } }' "$csv"
 /usr/bin/python3 "$here/plot_hybrid_speed.py" "$csv" "$out/hybrid_speed.png"
 
 # The quick variant's checks: every run completed (above), the hybrid
