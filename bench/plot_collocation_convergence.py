@@ -34,7 +34,7 @@ def main():
             x = [float(r[x_key]) for r in rows]
             # Round-off errors of 0 would vanish from a log plot.
             y = [max(float(r["l2_error"]), 1e-17) for r in rows]
-            style = "o-" if scheme == "collocation" else "s--"
+            style = {"collocation": "o-", "collocation_s": "^-"}.get(scheme, "s--")
             ax.loglog(x, y, style, label=f"{study}, {field}, {scheme}")
         ax.set_xlabel(x_label)
         ax.set_ylabel("relative L2 error of u")

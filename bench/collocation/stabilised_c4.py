@@ -22,7 +22,7 @@ Row of node i (cloud C_i of n_c nodes, xi_0 = 0 the node itself):
 
     /usr/bin/python3 bench/collocation/stabilised_c4.py             # everything (a few minutes)
     /usr/bin/python3 bench/collocation/stabilised_c4.py --quick     # coarser k-grids
-    /usr/bin/python3 bench/collocation/stabilised_c4.py --part ex2  # one part: survey variants rt15 lp pert periodic ex2
+    /usr/bin/python3 bench/collocation/stabilised_c4.py --part ex2  # one part: survey variants rt15 lp pert periodic ex2 c2
 """
 
 import argparse
@@ -640,6 +640,41 @@ def standard_row_ex2(m):
     return R
 
 
+# --------------------------------------------------------------------------
+# Part c2: the order-2 lattice row, the paper's against the stabilised one
+# --------------------------------------------------------------------------
+C2_CASES = [(1, 5, 3), (1, 5, 6), (2, 29, 3), (2, 29, 4), (2, 29, 6), (3, 33, 3), (3, 33, 4)]
+
+
+def c2_lattice(nk):
+    """Doc Sect. 7.3: for each C2 lattice row, the paper's (r~ = delta) and the
+    stabilised one (r~ = 1.5 delta, gamma = 1.25): the relative symbol error at
+    |k| delta = 1 and 3, the most negative symbol value over that of the
+    standard meshfree scheme (whole family, V_j = h^d; the explicit step goes
+    like its inverse square root) and the largest symbol value over |min|
+    (> 0: growing modes)."""
+    print("\n== C2 lattice rows: paper (r~ = delta) | stabilised (r~ = 1.5 delta, gamma = 1.25)")
+    print(f"  {'d':>1s} {'m':>2s} {'row':14s} {'err kd=1':>17s} {'err kd=3':>17s} {'min/min_std':>11s} {'max/|min|':>19s}")
+    for d, nc, m in C2_CASES:
+        n = nk[d] if d < 3 else min(nk[d], 25)
+        for phys in ("diff", "bond"):
+            for infl in ("constant", "conical"):
+                smin = standard_min(d, m, infl, phys, n)
+                res = []
+                for rt, g in ((1.0, 0.0), (1.5, 1.25)):
+                    xi, Q, M, _ = cloud(d, 2, m, nc, rt)
+                    W = base_row(d, 2, m, Q, infl, phys)
+                    if g:
+                        s, i0 = s_vector(d, m, xi, infl, phys)
+                        W = full_row(W, T_row(s, i0, M, Q), g, d)
+                    lmax, lmin = eig_ext(symbol(W, xi, d, n))
+                    res.append((sym_err(W, xi, d, m, infl, phys, 1.0), sym_err(W, xi, d, m, infl, phys, 3.0),
+                                lmin.min() / smin, lmax.max() / abs(lmin.min())))
+                a, b = res
+                print(f"  {d} {m:2d} {phys + ' ' + infl:14s} {a[0]:.1e} | {b[0]:.1e}  {a[1]:.1e} | {b[1]:.1e}"
+                      f"  {a[2]:4.2f} | {b[2]:4.2f}  {a[3]:+.0e} | {b[3]:+.0e}", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
@@ -679,6 +714,8 @@ def main():
                     for key, v in r.items()), flush=True)
     if p in ("all", "ex2"):
         example2()
+    if p in ("all", "c2"):
+        c2_lattice(nk)
     print(f"\n{time.time() - t0:.0f} s")
 
 

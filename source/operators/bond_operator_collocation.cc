@@ -36,6 +36,15 @@ namespace PeriDEAL
                   ExcMessage("The collocation rows of state-based models are "
                              "built for linear kinematics without failure "
                              "(set_kinematics(false, {}))."));
+      AssertThrow(
+        !state_based ||
+          settings.stabilisation_mode !=
+            Quadrature::CollocationSettings::Stabilisation::all_orders,
+        ExcInvalidInput("Quadrature/collocation/Stabilisation",
+                        "all orders",
+                        "the state-based (LPS) rows are not "
+                        "stabilised yet, so the entry would have "
+                        "no effect; use 'automatic'"));
 
       // The family of a bulk node: the node itself and the stencil offsets
       // within the horizon (the cells that the ball only cuts are not
@@ -56,12 +65,13 @@ namespace PeriDEAL
         }
       // Stabilised order-4 rows (doc/collocation.md Sect. 7.1): bond-based
       // only so far; the state-based rows are the paper's.
-      const double gamma = state_based ? 0. : settings.stabilisation();
+      constexpr auto kind  = Quadrature::CollocationSettings::RowKind::lattice;
+      const double   gamma = state_based ? 0. : settings.stabilisation(kind);
       const Quadrature::CollocationFit<dim> fit(
         settings.order,
         settings.n_collocation,
         horizon,
-        (state_based ? 1. : settings.weight_radius_factor()) * horizon);
+        (state_based ? 1. : settings.weight_radius_factor(kind)) * horizon);
       const std::vector<unsigned int> selected = fit.select(family);
       std::vector<Tensor<1, dim>>     cloud;
       for (const unsigned int j : selected)
@@ -235,9 +245,8 @@ namespace PeriDEAL
                       format_number(report.symbol) +
                       " of the most negative; doc/collocation.md Sect. 7): "
                       "the static operator is indefinite. Use 'Order = 2'" +
-                      std::string(settings.stabilised || state_based ?
-                                    "" :
-                                    ", or 'Stabilisation = automatic'")));
+                      (state_based ? std::string() :
+                                     settings.stabilisation_hint())));
 
       std::size_t n_collocation_nodes = 0, n_fixed_standard = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)

@@ -37,14 +37,13 @@ namespace PeriDEAL
                              "bond-based models."));
       // Rows per node take the stabilised form for order 2 as well: on
       // perturbed clouds the paper's C2 rows have node-local growing modes
-      // (doc/collocation.md Sect. 7.2); the same choice as
-      // DiffusionOperator::use_collocation_per_node().
-      const bool stabilise = settings.stabilised && settings.order <= 4;
+      // (doc/collocation.md Sect. 7.2).
+      constexpr auto kind = Quadrature::CollocationSettings::RowKind::per_node;
       const Quadrature::CollocationFit<dim> fit(
         settings.order,
         settings.n_collocation,
         horizon,
-        (stabilise ? 1.5 : settings.weight_radius_factor()) * horizon);
+        settings.weight_radius_factor(kind) * horizon);
       // The pair stiffness 2 beta(r) n (x) n; its trace over d weighs the
       // stabilisation term (doc/collocation.md Sect. 7.1).
       const auto stiffness = [&](const double r) {
@@ -52,7 +51,7 @@ namespace PeriDEAL
       };
       const auto moments =
         Quadrature::tensor_moments<dim>(fit.basis(), stiffness, horizon);
-      const double gamma = stabilise ? 1.25 : settings.stabilisation();
+      const double                     gamma = settings.stabilisation(kind);
       NodeRowFits<dim, Tensor<2, dim>> fits;
       const CollocationReport report = fit_node_rows<dim, Tensor<2, dim>>(
         *nodes,

@@ -14,6 +14,14 @@ namespace PeriDEAL
 {
   namespace Operators
   {
+    namespace
+    {
+      constexpr auto Lattice =
+        Quadrature::CollocationSettings::RowKind::lattice;
+      constexpr auto PerNode =
+        Quadrature::CollocationSettings::RowKind::per_node;
+    } // namespace
+
     template <int dim>
     void
     DiffusionOperator<dim>::reinit(
@@ -488,7 +496,7 @@ namespace PeriDEAL
         settings.order,
         settings.n_collocation,
         horizon,
-        settings.weight_radius_factor() * horizon);
+        settings.weight_radius_factor(Lattice) * horizon);
       const std::vector<unsigned int> selected = fit.select(family);
       std::vector<Tensor<1, dim>>     cloud;
       for (const unsigned int j : selected)
@@ -526,7 +534,7 @@ namespace PeriDEAL
         [&](const double r) { return kernel->conductance(r); },
         horizon);
       std::vector<double> row = Quadrature::scalar_row(moments, q);
-      if (settings.stabilisation() > 0)
+      if (settings.stabilisation(Lattice) > 0)
         Quadrature::add_stabilisation<dim>(
           row,
           fit.basis(),
@@ -534,7 +542,7 @@ namespace PeriDEAL
           q,
           [&](const double r) { return kernel->conductance(r); },
           horizon,
-          settings.stabilisation());
+          settings.stabilisation(Lattice));
       {
         std::vector<Tensor<2, dim>> blocks;
         for (const double w : row)
@@ -574,9 +582,7 @@ namespace PeriDEAL
                     "weighs its own node against its neighbours (a "
                     "non-positive diagonal; doc/collocation.md Sect. 7): "
                     "the operator has growing modes. Use 'Order = 2'" +
-                      std::string(settings.stabilised ?
-                                    "" :
-                                    ", or 'Stabilisation = automatic'")));
+                      settings.stabilisation_hint()));
       build_work_lists();
       return condition;
     }
@@ -608,15 +614,13 @@ namespace PeriDEAL
             for (unsigned int i = 0; i < n_owned; ++i)
               standard[i] = bond_state->any_broken(i);
           // Rows per node take the stabilised form for order 2 as well
-          // (doc/collocation.md Sect. 7.2); the same choice as
-          // BondOperator::use_collocation_per_node().
-          const bool   stabilise = settings.stabilised && settings.order <= 4;
-          const double gamma     = stabilise ? 1.25 : settings.stabilisation();
+          // (doc/collocation.md Sect. 7.2).
+          const double gamma = settings.stabilisation(PerNode);
           const Quadrature::CollocationFit<dim> fit(
             settings.order,
             settings.n_collocation,
             horizon,
-            (stabilise ? 1.5 : settings.weight_radius_factor()) * horizon);
+            settings.weight_radius_factor(PerNode) * horizon);
           const auto conductance = [&](const double r) {
             return kernel->conductance(r);
           };

@@ -426,10 +426,7 @@ namespace PeriDEAL
     {
       const unsigned int n_c = cloud.size(), n_p = basis.size();
       AssertThrow(q.m() == n_p && q.n() == n_c && n_c > 1, ExcInternalError());
-      const double ball = (dim == 1 ? 2. :
-                           dim == 2 ? M_PI :
-                                      4. / 3. * M_PI) *
-                          std::pow(horizon, dim);
+      const double ball = ball_volume<dim>(horizon);
       // v: the positive-weight sum, the node itself weighing minus the
       // others.
       std::vector<double> v(n_c, 0.);

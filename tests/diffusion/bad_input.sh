@@ -166,6 +166,14 @@ group_collocation() {
   sed "$col; s/  set Scheme = collocation/  set Scheme = collocation\n  subsection collocation\n    set Order = 4\n  end/" base.prm > collocation_c4.prm
   expect_valid 1 collocation_c4.prm "plain diffusion with stabilised order-4 collocation" out/solution.pvd out/history.csv
   rm -rf out
+  # The order-2 lattice row stabilised too (doc/collocation.md Sect. 7.3):
+  # runs in 2D, refused in 1D, where it has growing modes.
+  all_orders="s/  set Scheme = collocation/  set Scheme = collocation\n  subsection collocation\n    set Stabilisation = all orders\n  end/"
+  sed "$col; $all_orders" base.prm > collocation_all_orders.prm
+  expect_valid 1 collocation_all_orders.prm "plain diffusion with the stabilised order-2 lattice row" out/solution.pvd out/history.csv
+  rm -rf out
+  expect_error "$col; $all_orders; s/set Dimension = 2/set Dimension = 1/; s/set Lower corner = 0, 0/set Lower corner = 0/; s/set Upper corner = 1, 0.5/set Upper corner = 1/; s/set Subdivisions = 20, 10/set Subdivisions = 20/" \
+    "Invalid value 'all orders' for the parameter 'Quadrature/collocation/Stabilisation': in 1D the stabilised order-2 row has growing modes"
   base_prm=corrosion.prm
   expect_error "$col" \
     "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the diffusion model 'corrosion' does not run with the collocation quadrature yet"

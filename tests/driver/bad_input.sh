@@ -242,6 +242,14 @@ group_collocation() {
   sed "$(col '' "$gmres")" base.prm > collocation_lps.prm
   expect_valid 1 collocation_lps.prm "collocation, LPS, GMRES" out/solution_0.pvtu
   rm -rf out
+  # The order-2 lattice row stabilised too ('Stabilisation = all orders',
+  # doc/collocation.md Sect. 7.3): bond-based runs; the LPS rows are not
+  # stabilised, so there the entry would have no effect.
+  sed "$bb; $(col '  subsection collocation\n    set Stabilisation = all orders\n  end' "$gmres")" base.prm > collocation_all_orders.prm
+  expect_valid 1 collocation_all_orders.prm "collocation, bond-based, stabilised order 2, GMRES" out/solution_0.pvtu
+  rm -rf out
+  expect_error "$(col '  subsection collocation\n    set Stabilisation = all orders\n  end' "$gmres")" \
+    "Invalid value 'all orders' for the parameter 'Quadrature/collocation/Stabilisation': the state-based (LPS) rows are not stabilised yet, so the entry would have no effect; use 'automatic'"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Method = CG\nend')" \
     "Invalid value 'CG' for the parameter 'Linear solver/Method': the quadrature scheme 'collocation' gives a non-symmetric system"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\nend')" \

@@ -21,6 +21,7 @@
 #include <deal.II/base/point.h>
 
 #include <perideal/quadrature/collocation.h>
+#include <perideal/quadrature/quadrature_scheme.h>
 
 #include <array>
 #include <cmath>
@@ -650,7 +651,50 @@ main()
   stable<1>(4, {4, 6, 8, 12}, "stabilised 1D C4, m = 4, 6, 8, 12");
   stable<2>(4, {3, 4, 6}, "stabilised 2D C4, m = 3, 4, 6");
   stable<3>(4, {3, 4}, "stabilised 3D C4, m = 3, 4");
+
+  // The stabilised order-2 lattice rows ('Stabilisation = all orders',
+  // doc/collocation.md Sect. 7.3): exact on every quadratic, no growing
+  // modes in 2D and 3D; in 1D (constant influence, bond-based) they have
+  // growing modes, which is why 1D refuses the entry (negative control).
+  for (const double p : {0., 0.35})
+    {
+      patch_elasticity<2>(2, 3, p, false, rng);
+      patch_elasticity<2>(2, 4, p, true, rng);
+      patch_elasticity<3>(2, 4, p, false, rng);
+      patch_diffusion<2>(2, 4, 0, p, true, rng);
+      patch_diffusion<3>(2, 3, 1, p, false, rng);
+    }
+  stable<2>(2, {3, 4, 6}, "stabilised 2D C2, m = 3, 4, 6");
+  stable<3>(2, {3, 4}, "stabilised 3D C2, m = 3, 4");
+  verdict("stabilised 1D C2 m=3, bond-based, constant: symbol > 0.1 "
+          "(growing modes)",
+          symbol<1>(2, 3) > 0.1);
   stabilisation = 0;
+
+  // Which rows the entry stabilises (CollocationSettings).
+  {
+    using Settings     = CollocationSettings;
+    const auto lattice = Settings::RowKind::lattice;
+    const auto node    = Settings::RowKind::per_node;
+    Settings   s;
+    s.order                = 2;
+    const bool automatic_2 = !s.stabilised(lattice) && s.stabilised(node);
+    s.stabilisation_mode   = Settings::Stabilisation::all_orders;
+    const bool all_2       = s.stabilised(lattice) && s.stabilised(node) &&
+                       s.weight_radius_factor(lattice) == 1.5 &&
+                       s.stabilisation(lattice) == 1.25;
+    s.stabilisation_mode = Settings::Stabilisation::none;
+    s.order              = 4;
+    const bool none_4    = !s.stabilised(lattice) && !s.stabilised(node) &&
+                        s.weight_radius_factor(node) == 1. &&
+                        s.stabilisation(node) == 0.;
+    s.stabilisation_mode = Settings::Stabilisation::all_orders;
+    s.order              = 6;
+    const bool six       = !s.stabilised(lattice) && !s.stabilised(node);
+    verdict("Stabilisation: automatic order 2 (per node only), all orders, "
+            "none, order 6",
+            automatic_2 && all_2 && none_4 && six);
+  }
 
   std::cout << (all_passed ? "all checks passed" : "SOME CHECKS FAILED")
             << std::endl;

@@ -16,6 +16,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -232,6 +233,17 @@ namespace PeriDEAL
     double
     second_radial_moment(const std::function<double(double)> &radial,
                          const double                         horizon);
+
+    /// The volume (length, area) of the ball of radius @p horizon.
+    template <int dim>
+    inline double
+    ball_volume(const double horizon)
+    {
+      return (dim == 1 ? 2. :
+              dim == 2 ? M_PI :
+                         4. / 3. * M_PI) *
+             std::pow(horizon, dim);
+    }
 
     /// A row's vectors: W_j = sum_alpha L[alpha] Q[alpha, j].
     template <int dim>

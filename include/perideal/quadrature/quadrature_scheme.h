@@ -33,27 +33,65 @@ namespace PeriDEAL
       /// Whether an ill-conditioned cloud falls back to the standard
       /// scheme (true) or stops the run (false).
       bool fall_back = true;
-      /// 'Stabilisation = automatic': the order-4 rows are fitted with the
-      /// wider weight and carry the stabilisation term (doc/collocation.md
-      /// Sect. 7.1), which removes their growing modes; 'none': the
-      /// paper's rows for every order.
-      bool stabilised = true;
+      /// The two kinds of collocation rows: the one shared row of the
+      /// uniform bulk ('lattice') and the rows fitted node by node where
+      /// nodes are irregular ('per node').
+      enum class RowKind
+      {
+        lattice,
+        per_node
+      };
+
+      /// 'Quadrature/collocation/Stabilisation' (doc/collocation.md
+      /// Sect. 7): 'automatic' stabilises the rows that need it (order 4,
+      /// and the rows per node of order 2); 'all orders' also the order-2
+      /// lattice row of 2D and 3D, which makes it more accurate and gives a
+      /// longer explicit time step (Sect. 7.3); 'none' keeps the paper's
+      /// rows.
+      enum class Stabilisation
+      {
+        automatic,
+        all_orders,
+        none
+      };
+      Stabilisation stabilisation_mode = Stabilisation::automatic;
+
+      /// Whether rows of @p kind are fitted with the wider weight and carry
+      /// the stabilisation term (order 6 never is).
+      bool
+      stabilised(const RowKind kind) const
+      {
+        if (stabilisation_mode == Stabilisation::none || order > 4)
+          return false;
+        return order == 4 || kind == RowKind::per_node ||
+               stabilisation_mode == Stabilisation::all_orders;
+      }
 
       /// The weight radius of Eq. 36 over the horizon: 1.5 for stabilised
-      /// order-4 rows, otherwise 1 (the paper's).
+      /// rows, otherwise 1 (the paper's).
       double
-      weight_radius_factor() const
+      weight_radius_factor(const RowKind kind) const
       {
-        return stabilised && order == 4 ? 1.5 : 1.;
+        return stabilised(kind) ? 1.5 : 1.;
       }
 
       /// The factor gamma of the stabilisation term
-      /// (Quadrature::stabilisation_row()): 1.25 for stabilised order-4
-      /// rows, otherwise 0.
+      /// (Quadrature::stabilisation_row()): 1.25 for stabilised rows,
+      /// otherwise 0.
       double
-      stabilisation() const
+      stabilisation(const RowKind kind) const
       {
-        return stabilised && order == 4 ? 1.25 : 0.;
+        return stabilised(kind) ? 1.25 : 0.;
+      }
+
+      /// The text to add to an error about growing modes or an indefinite
+      /// row when the user turned the stabilisation off.
+      std::string
+      stabilisation_hint() const
+      {
+        return stabilisation_mode == Stabilisation::none ?
+                 ", or 'Stabilisation = automatic'" :
+                 "";
       }
       /// The largest cond_2(A_i) accepted (doc/collocation.md Sect. 7: the
       /// fit then loses at most about sqrt(1e12) eps ~ 1e-10 of its

@@ -179,22 +179,24 @@ namespace PeriDEAL
               const double condition = op.use_collocation(*settings);
               // Growing modes (doc/collocation.md Sect. 7) blow up any
               // explicit step.
-              AssertThrow(op.collocation_symbol() <= 1e-10 ||
-                            integrator->solves_linear_systems(),
-                          ExcInvalidInput(
-                            "Quadrature/collocation/Order",
-                            std::to_string(settings->order),
-                            "the bulk collocation row of this order at this "
-                            "m-ratio has growing modes (largest symbol "
-                            "eigenvalue " +
-                              format_number(op.collocation_symbol()) +
-                              " of the most negative; doc/collocation.md Sect. "
-                              "7), which explicit time stepping amplifies at "
-                              "any step; use 'Order = 2'" +
-                              std::string(settings->stabilised ?
-                                            "" :
-                                            ", 'Stabilisation = automatic'") +
-                              " or implicit time stepping"));
+              AssertThrow(
+                op.collocation_symbol() <= 1e-10 ||
+                  integrator->solves_linear_systems(),
+                ExcInvalidInput(
+                  "Quadrature/collocation/Order",
+                  std::to_string(settings->order),
+                  "the bulk collocation row of this order at this "
+                  "m-ratio has growing modes (largest symbol "
+                  "eigenvalue " +
+                    format_number(op.collocation_symbol()) +
+                    " of the most negative; doc/collocation.md Sect. "
+                    "7), which explicit time stepping amplifies at "
+                    "any step; use 'Order = 2'" +
+                    (settings->stabilisation_mode ==
+                         Quadrature::CollocationSettings::Stabilisation::none ?
+                       std::string(", 'Stabilisation = automatic'") :
+                       std::string()) +
+                    " or implicit time stepping"));
               line << (op.uses_collocation() ?
                          std::to_string(op.n_collocation_nodes()) +
                            " collocation nodes, cond(A) " :

@@ -81,9 +81,7 @@ namespace PeriDEAL
                       " of the most negative; doc/collocation.md Sect. 7), "
                       "which explicit time stepping amplifies at any step; "
                       "use 'Order = 2'" +
-                      std::string(settings.stabilised ?
-                                    "" :
-                                    ", or 'Stabilisation = automatic'")));
+                      settings.stabilisation_hint()));
       n_total_nodes    = simulator.get_summary().n_nodes;
       n_standard_nodes = n_total_nodes - report.n_collocation_nodes;
       n_switch_scans   = 0;
