@@ -299,6 +299,23 @@ group_collocation() {
   base_prm=heavy.prm
   expect_error "s/    set Order = 2/    set Order = 2\n    set Ill-conditioned clouds = error/" \
     "Invalid value 'error' for the parameter 'Quadrature/collocation/Ill-conditioned clouds': $fell_back nodes have a collocation cloud with cond(A) > 1e12 or a row with a non-positive diagonal (one at (" 2
+  # A stabilised order-4 row with a non-positive diagonal (seed 11: one
+  # node of the 30^2 grid at 0.35 h; cond(A) 2e4, so a badly shaped cloud,
+  # not an ill-conditioned one) falls back like a bad order-2 cloud, or
+  # stops the run with 'error'; the paper's order-4 rows ('Stabilisation =
+  # none') have such rows at hundreds of nodes, the order's fault, and stop.
+  c4bad="s/set Random seed = 7/set Random seed = 11/; s/set Write VTU = false/set Write VTU = true/; s/    set Order = 2/    set Order = 4/"
+  sed "$c4bad; s|  set Directory *=.*||; s|^subsection Output|subsection Output\n  set Directory = out|" \
+    "$source_dir/collocation_2d_quadratic_perturbed.prm" > c4bad.prm
+  expect_valid 1 c4bad.prm "stabilised C4 on perturbed nodes, one bad cloud, fall back" out/solution_0.pvtu
+  grep -qF " 1 standard (ill-conditioned or indefinite cloud)" <<<"$out" ||
+    fail "the bad C4 cloud did not fall back: $(grep quadrature <<<"$out")"
+  rm -rf out
+  base_prm=c4bad.prm
+  expect_error "s/    set Order = 4/    set Order = 4\n    set Ill-conditioned clouds = error/" \
+    "Invalid value 'error' for the parameter 'Quadrature/collocation/Ill-conditioned clouds': 1 nodes have a collocation cloud with cond(A) > 1e12 or a row with a non-positive diagonal (one at (" 2
+  expect_error "s/    set Order = 4/    set Order = 4\n    set Stabilisation = none/" \
+    "Invalid value '4' for the parameter 'Quadrature/collocation/Order':" 2
   base_prm=base.prm
   sed "$(perturb '  set Node perturbation = 0.3')" base.prm > perturbed_standard.prm
   expect_valid 1 perturbed_standard.prm "standard LPS, perturbed nodes" out/solution_0.pvtu
