@@ -63,8 +63,9 @@ namespace PeriDEAL
               stencil_index.push_back(k);
             }
         }
-      // Stabilised order-4 rows (doc/collocation.md Sect. 7.1): bond-based
-      // only so far; the state-based rows are the paper's.
+      // Stabilised rows (order 4, and order 2 with 'all orders';
+      // doc/collocation.md Sects. 7.1, 7.3): bond-based only so far; the
+      // state-based rows are the paper's.
       constexpr auto kind  = Quadrature::CollocationSettings::RowKind::lattice;
       const double   gamma = state_based ? 0. : settings.stabilisation(kind);
       const Quadrature::CollocationFit<dim> fit(
