@@ -45,6 +45,21 @@ namespace PeriDEAL
                         "the state-based (LPS) rows are not "
                         "stabilised yet, so the entry would have "
                         "no effect; use 'automatic'"));
+      // On the lattice 'none' changes a row only where 'automatic' would
+      // stabilise it: the bond-based order-4 row.
+      AssertThrow(
+        settings.stabilisation_mode !=
+            Quadrature::CollocationSettings::Stabilisation::none ||
+          (!state_based && settings.order == 4),
+        ExcInvalidInput(
+          "Quadrature/collocation/Stabilisation",
+          "none",
+          state_based ?
+            "the state-based (LPS) rows are not stabilised yet, so the "
+            "entry has no effect; remove it" :
+            "on a uniform grid 'automatic' leaves the order-2 row as the "
+            "paper gives it (it stabilises only rows per node, on "
+            "irregular nodes), so the entry has no effect; remove it"));
 
       // The family of a bulk node: the node itself and the stencil offsets
       // within the horizon (the cells that the ball only cuts are not
