@@ -248,15 +248,7 @@ namespace PeriDEAL
       if (bond_energy_at_collocation_nodes && has_collocation_rows())
         {
           bond_energy.assign(nodes->n_owned(), 0.);
-          parallel::apply_to_subranges(
-            0u,
-            nodes->n_owned(),
-            [&](const unsigned int begin, const unsigned int end) {
-              for (unsigned int i = begin; i < end; ++i)
-                if (is_collocation_node(i))
-                  bond_energy[i] = node_bond_energy(i);
-            },
-            256);
+          collocation_bond_energies(bond_energy);
         }
       double energy = 0;
       for (unsigned int i = 0; i < nodes->n_owned(); ++i)

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace PeriDEAL
 {
@@ -45,6 +46,21 @@ namespace PeriDEAL
                         "the state-based (LPS) rows are not "
                         "stabilised yet, so the entry would have "
                         "no effect; use 'automatic'"));
+      // On the lattice 'none' changes a row only where 'automatic' would
+      // stabilise it: the bond-based order-4 row.
+      AssertThrow(
+        settings.stabilisation_mode !=
+            Quadrature::CollocationSettings::Stabilisation::none ||
+          (!state_based && settings.order == 4),
+        ExcInvalidInput(
+          "Quadrature/collocation/Stabilisation",
+          "none",
+          state_based ?
+            "the state-based (LPS) rows are not stabilised yet, so the "
+            "entry has no effect; remove it" :
+            "on a uniform grid 'automatic' leaves the order-2 row as the "
+            "paper gives it (it stabilises only rows per node, on "
+            "irregular nodes), so the entry has no effect; remove it"));
 
       // The family of a bulk node: the node itself and the stencil offsets
       // within the horizon (the cells that the ball only cuts are not
@@ -321,6 +337,49 @@ namespace PeriDEAL
         }
       const std::size_t n_offsets = collocation_row.offset.size();
       const bool        lps       = !collocation_theta_chunks.empty();
+      // The lanes [first, first + width) of a chunk: force_a += w_ab (u_b at
+      // the neighbour - u_b at the node), in the order of the row (fixed by
+      // the bond vectors), the same for every node, process and thread.
+      // With a width fixed at compile time the forces and the node's own
+      // displacement stay in registers (or at least in a small block of L1)
+      // over the whole row: one load of the neighbour per entry and
+      // component, where the loop over the whole chunk reloaded and stored
+      // the forces at every entry. The remainder of a chunk takes
+      // the same operations with its width at run time. Both round alike
+      // (no contraction in this file), and so does collocation_force().
+      const auto lanes = [&](const std::size_t first, const auto width) {
+        constexpr unsigned int n = decltype(width)::value;
+        double                 force[dim][n], ui[dim][n];
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int l = 0; l < n; ++l)
+            {
+              force[a][l] = 0;
+              ui[a][l]    = u_slot[a][first + l];
+            }
+        for (std::size_t k = 0; k < n_offsets; ++k)
+          {
+            const std::ptrdiff_t o = collocation_row.offset[k];
+            for (unsigned int b = 0; b < dim; ++b)
+              {
+                const double *uj = u_slot[b].data() + first + o;
+                double        du[n];
+#pragma omp simd
+                for (unsigned int l = 0; l < n; ++l)
+                  du[l] = uj[l] - ui[b][l];
+                for (unsigned int a = 0; a < dim; ++a)
+                  {
+                    const double w = collocation_row.w[a * dim + b][k];
+#pragma omp simd
+                    for (unsigned int l = 0; l < n; ++l)
+                      force[a][l] += w * du[l];
+                  }
+              }
+          }
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int l = 0; l < n; ++l)
+            f_slot[a][first + l] = force[a][l];
+      };
+      constexpr unsigned int block = 16;
       parallel::apply_to_subranges(
         std::size_t(0),
         collocation_chunks.size(),
@@ -330,11 +389,16 @@ namespace PeriDEAL
             {
               const std::size_t  s0  = collocation_chunks[c].first_slot;
               const unsigned int len = collocation_chunks[c].length;
+              unsigned int       l0  = 0;
+              if (!lps)
+                for (; l0 + block <= len; l0 += block)
+                  lanes(s0 + l0,
+                        std::integral_constant<unsigned int, block>());
+              if (l0 == len)
+                continue;
               for (unsigned int a = 0; a < dim; ++a)
-                for (unsigned int l = 0; l < len; ++l)
+                for (unsigned int l = l0; l < len; ++l)
                   force[a][l] = 0;
-              // In the order of the row (fixed by the bond vectors), the
-              // same for every node, process and thread.
               for (std::size_t k = 0; k < n_offsets; ++k)
                 {
                   const std::ptrdiff_t o = collocation_row.offset[k];
@@ -346,7 +410,7 @@ namespace PeriDEAL
                         {
                           const double w = collocation_row.w[a * dim + b][k];
 #pragma omp simd
-                          for (unsigned int l = 0; l < len; ++l)
+                          for (unsigned int l = l0; l < len; ++l)
                             force[a][l] += w * (uj[l] - ui[l]);
                         }
                     }
@@ -367,7 +431,7 @@ namespace PeriDEAL
                       }
                   }
               for (unsigned int a = 0; a < dim; ++a)
-                for (unsigned int l = 0; l < len; ++l)
+                for (unsigned int l = l0; l < len; ++l)
                   f_slot[a][s0 + l] = force[a][l];
             }
         },

@@ -10,6 +10,8 @@
 #include <perideal/operators/bond_operator.h>
 #include <perideal/operators/bond_operator.templates.h>
 
+#include <type_traits>
+
 namespace PeriDEAL
 {
   namespace Operators
@@ -66,6 +68,102 @@ namespace PeriDEAL
 
 
     template <int dim>
+    void
+    BondOperator<dim>::collocation_bond_energies(
+      std::vector<double> &energy) const
+    {
+      if (!node_rows.node.empty() || !layout.use_lattice)
+        {
+          parallel::apply_to_subranges(
+            0u,
+            nodes->n_owned(),
+            [&](const unsigned int begin, const unsigned int end) {
+              for (unsigned int i = begin; i < end; ++i)
+                if (is_collocation_node(i))
+                  energy[i] = node_bond_energy(i);
+            },
+            256);
+          return;
+        }
+      // A collocation node on the lattice has every stencil bond intact
+      // (one that lost a bond is standard): node_bond_energy() visits the
+      // offsets in stencil order, and so do the lanes here.
+      const bool fail = s0_slot.size() > 0;
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        collocation_chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double sum[chunk_size];
+          for (std::size_t c = begin; c < end; ++c)
+            {
+              const std::size_t  first = collocation_chunks[c].first_slot;
+              const unsigned int len   = collocation_chunks[c].length;
+              for (unsigned int l = 0; l < len; ++l)
+                sum[l] = 0;
+              const double *s0i = fail ? s0_slot.data() + first : nullptr;
+              for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
+                {
+                  const std::ptrdiff_t o = layout.stencil_offset[k];
+                  double               xi[dim], n[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      xi[d] = stencil.xi[d][k];
+                      n[d]  = stencil.n[d][k];
+                    }
+                  const double  r     = stencil.r[k];
+                  const double  inv_r = 1. / r;
+                  const double  b     = stencil.b[k];
+                  const double *ui[dim];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    ui[d] = u_slot[d].data() + first;
+                  const auto lanes = [&](auto finite_kinematics,
+                                         auto with_failure_test) {
+                    constexpr bool with_finite =
+                      decltype(finite_kinematics)::value;
+                    constexpr bool with_test =
+                      decltype(with_failure_test)::value;
+#pragma omp simd
+                    for (unsigned int l = 0; l < len; ++l)
+                      {
+                        const auto eta = [&](const unsigned int d) {
+                          return ui[d][l + o] - ui[d][l];
+                        };
+                        const double e =
+                          BondKernel::extension<with_finite, dim>(xi,
+                                                                  n,
+                                                                  r,
+                                                                  eta);
+                        const bool intact =
+                          !with_test || BondKernel::is_intact(e,
+                                                              inv_r,
+                                                              s0i[l],
+                                                              s0i[l + o]);
+                        sum[l] += intact ? BondKernel::energy(b, e) : 0.;
+                      }
+                  };
+                  if (finite && fail)
+                    lanes(std::true_type(), std::true_type());
+                  else if (finite)
+                    lanes(std::true_type(), std::false_type());
+                  else if (fail)
+                    lanes(std::false_type(), std::true_type());
+                  else
+                    lanes(std::false_type(), std::false_type());
+                }
+              for (unsigned int l = 0; l < len; ++l)
+                {
+                  const unsigned int i = layout.node_of_slot(first + l);
+                  AssertIndexRange(i, energy.size());
+                  Assert(layout.on_stencil(i), ExcInternalError());
+                  energy[i] = sum[l];
+                }
+            }
+        },
+        LoopLayout<dim>::chunk_grain);
+    }
+
+
+    template <int dim>
     double
     BondOperator<dim>::elastic_energy(const VectorType &displacement) const
     {
@@ -107,6 +205,10 @@ namespace PeriDEAL
     BondOperator<2>::elastic_energy(const VectorType &) const;
     template double
     BondOperator<3>::elastic_energy(const VectorType &) const;
+    template void
+    BondOperator<2>::collocation_bond_energies(std::vector<double> &) const;
+    template void
+    BondOperator<3>::collocation_bond_energies(std::vector<double> &) const;
     template double
     BondOperator<2>::node_bond_energy(const unsigned int) const;
     template double

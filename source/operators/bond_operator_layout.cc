@@ -182,9 +182,10 @@ namespace PeriDEAL
                  layout.on_stencil(i);
         },
         theta_work().chunks);
+      const unsigned int n_owned = nodes->n_owned();
       layout.make_chunks(
         [&](const unsigned int i) {
-          return i < nodes->n_owned() && !is_collocation_node(i) &&
+          return i < n_owned && !is_collocation_node(i) &&
                  layout.on_stencil(i);
         },
         force_work().chunks);

@@ -72,6 +72,18 @@ namespace PeriDEAL
               t.node_neighbor[std::size_t(i) * dim + d] = lattice.node_at(y);
             }
         }
+      t.tile_first.assign(n_tiles + 1, 0);
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        ++t.tile_first[t.node_tile[i] + 1];
+      for (std::size_t tile = 0; tile < n_tiles; ++tile)
+        t.tile_first[tile + 1] += t.tile_first[tile];
+      t.tile_nodes.resize(n_nodes);
+      {
+        std::vector<std::size_t> next(t.tile_first.begin(),
+                                      t.tile_first.end() - 1);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          t.tile_nodes[next[t.node_tile[i]]++] = i;
+      }
       t.slot_tile.assign(layout.n_slots, 0);
       for (unsigned int i = 0; i < n_nodes; ++i)
         t.slot_tile[layout.slot[i]] = t.node_tile[i];
@@ -321,73 +333,102 @@ namespace PeriDEAL
       const unsigned int n_nodes = nodes->size();
       // This step's displacement change of every local node (owned and
       // ghost; exact when old and new are within a factor 2, Sterbenz).
-      for (unsigned int i = 0; i < n_nodes; ++i)
-        {
-          const std::size_t base = layout.vector_index[i];
-          for (unsigned int c = 0; c < dim; ++c)
+      // Threaded: every entry, edge and tile is its own, and a largest
+      // value does not depend on the order it is taken in.
+      parallel::apply_to_subranges(
+        0u,
+        n_nodes,
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
             {
-              const std::size_t q = std::size_t(i) * dim + c;
-              t.step_change[q] = values[base + c] - t.previous_displacement[q];
-              t.previous_displacement[q] = values[base + c];
-            }
-        }
-      // The largest change |du_a - du_b|^2 over the lattice edges
-      // (a, a + e_d), in the tile of a.
-      std::fill(t.tile_edge.begin(), t.tile_edge.end(), 0.);
-      for (unsigned int a = 0; a < n_nodes; ++a)
-        {
-          double &edge = t.tile_edge[t.node_tile[a]];
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const int b = t.node_neighbor[std::size_t(a) * dim + d];
-              if (b < 0)
-                continue;
-              double e2 = 0;
+              const std::size_t base = layout.vector_index[i];
               for (unsigned int c = 0; c < dim; ++c)
                 {
-                  const double diff = t.step_change[std::size_t(a) * dim + c] -
-                                      t.step_change[std::size_t(b) * dim + c];
-                  e2 += diff * diff;
+                  const std::size_t q = std::size_t(i) * dim + c;
+                  t.step_change[q] =
+                    values[base + c] - t.previous_displacement[q];
+                  t.previous_displacement[q] = values[base + c];
                 }
-              edge = std::max(edge, e2);
             }
-        }
+        },
+        LoopLayout<dim>::node_grain);
+      // The largest change |du_a - du_b|^2 over the lattice edges
+      // (a, a + e_d), in the tile of a.
+      const std::size_t n_tiles = t.tile_edge.size();
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        n_tiles,
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t tile = begin; tile < end; ++tile)
+            {
+              double edge = 0;
+              for (std::size_t q = t.tile_first[tile];
+                   q < t.tile_first[tile + 1];
+                   ++q)
+                {
+                  const unsigned int a = t.tile_nodes[q];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      const int b = t.node_neighbor[std::size_t(a) * dim + d];
+                      if (b < 0)
+                        continue;
+                      double e2 = 0;
+                      for (unsigned int c = 0; c < dim; ++c)
+                        {
+                          const double diff =
+                            t.step_change[std::size_t(a) * dim + c] -
+                            t.step_change[std::size_t(b) * dim + c];
+                          e2 += diff * diff;
+                        }
+                      edge = std::max(edge, e2);
+                    }
+                }
+              t.tile_edge[tile] = edge;
+            }
+        },
+        16);
       // Over the 3^dim tiles around each tile: a bound of E for every node
       // of the tile (its stencil box lies in them, and so does the lower
       // end of every edge in that box).
-      const std::size_t n_tiles = t.tile_edge.size();
-      for (std::size_t tile = 0; tile < n_tiles; ++tile)
-        {
-          std::array<std::int64_t, dim> k, lo, hi;
-          std::size_t                   rest = tile;
-          for (unsigned int d = 0; d < dim; ++d)
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        n_tiles,
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t tile = begin; tile < end; ++tile)
             {
-              k[d] = rest % t.n_tiles[d];
-              rest /= t.n_tiles[d];
-              lo[d] = std::max<std::int64_t>(k[d] - 1, 0);
-              hi[d] = std::min<std::int64_t>(k[d] + 1, t.n_tiles[d] - 1);
+              std::array<std::int64_t, dim> k, lo, hi;
+              std::size_t                   rest = tile;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  k[d] = rest % t.n_tiles[d];
+                  rest /= t.n_tiles[d];
+                  lo[d] = std::max<std::int64_t>(k[d] - 1, 0);
+                  hi[d] = std::min<std::int64_t>(k[d] + 1, t.n_tiles[d] - 1);
+                }
+              double                        largest = 0;
+              std::array<std::int64_t, dim> m       = lo;
+              while (true)
+                {
+                  std::size_t other = 0;
+                  for (int d = dim - 1; d >= 0; --d)
+                    other = other * t.n_tiles[d] + m[d];
+                  largest        = std::max(largest, t.tile_edge[other]);
+                  unsigned int d = 0;
+                  for (; d < dim; ++d)
+                    if (++m[d] <= hi[d])
+                      break;
+                    else
+                      m[d] = lo[d];
+                  if (d == dim)
+                    break;
+                }
+              // Rounded up, so that the rounding of the bound never makes
+              // it smaller than the change it bounds.
+              t.tile_block[tile] =
+                std::sqrt(largest) * t.path_factor * (1 + 1e-12);
             }
-          double                        largest = 0;
-          std::array<std::int64_t, dim> m       = lo;
-          while (true)
-            {
-              std::size_t other = 0;
-              for (int d = dim - 1; d >= 0; --d)
-                other = other * t.n_tiles[d] + m[d];
-              largest        = std::max(largest, t.tile_edge[other]);
-              unsigned int d = 0;
-              for (; d < dim; ++d)
-                if (++m[d] <= hi[d])
-                  break;
-                else
-                  m[d] = lo[d];
-              if (d == dim)
-                break;
-            }
-          // Rounded up, so that the rounding of the bound never makes it
-          // smaller than the change it bounds.
-          t.tile_block[tile] = std::sqrt(largest) * t.path_factor * (1 + 1e-12);
-        }
+        },
+        64);
       // Each collocation node adds its bound to its drift since its last
       // scan; its chunk is due once the drift reaches the node's margin
       // (with a hair of slack for the rounding of the stretches

@@ -475,6 +475,18 @@ namespace PeriDEAL
       AssertThrow(layout.use_lattice && !with_phases,
                   ExcMessage("DiffusionOperator: the collocation quadrature "
                              "needs a uniform grid and no phases."));
+      // On the lattice 'none' changes a row only where 'automatic' would
+      // stabilise it: order 4.
+      AssertThrow(
+        settings.stabilisation_mode !=
+            Quadrature::CollocationSettings::Stabilisation::none ||
+          settings.order == 4,
+        ExcInvalidInput("Quadrature/collocation/Stabilisation",
+                        "none",
+                        "on a uniform grid 'automatic' leaves the order-"
+                        "2 row as the paper gives it (it stabilises only rows "
+                        "per node, on irregular nodes), so the entry has no "
+                        "effect; remove it"));
       // The family of a bulk node: itself and the stencil offsets within
       // the horizon, with their stencil index.
       const double                h       = lists->lattice().spacing();

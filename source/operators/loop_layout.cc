@@ -108,6 +108,17 @@ namespace PeriDEAL
       slot.resize(n);
       for (unsigned int i = 0; i < n; ++i)
         slot[i] = use_lattice ? lattice.slot(i) : i;
+      // The nodes by increasing slot (slots are distinct), so that
+      // make_chunks() needs no sort.
+      nodes_by_slot.resize(n);
+      for (unsigned int i = 0; i < n; ++i)
+        nodes_by_slot[i] = i;
+      if (use_lattice)
+        std::sort(nodes_by_slot.begin(),
+                  nodes_by_slot.end(),
+                  [&](const unsigned int a, const unsigned int b) {
+                    return slot[a] < slot[b];
+                  });
       stencil_offset.clear();
       if (use_lattice)
         for (const auto &o : lists->stencil())
@@ -342,6 +353,7 @@ namespace PeriDEAL
       std::size_t bytes =
         vector_index.capacity() * sizeof(unsigned int) +
         slot.capacity() * sizeof(std::size_t) +
+        nodes_by_slot.capacity() * sizeof(unsigned int) +
         stencil_offset.capacity() * sizeof(std::ptrdiff_t) +
         (list_first.capacity() + list_end.capacity() +
          bond_stencil_first.capacity()) *

@@ -172,6 +172,8 @@ group_collocation() {
   sed "$col; $all_orders" base.prm > collocation_all_orders.prm
   expect_valid 1 collocation_all_orders.prm "plain diffusion with the stabilised order-2 lattice row" out/solution.pvd out/history.csv
   rm -rf out
+  expect_error "$col; s/  set Scheme = collocation/  set Scheme = collocation\n  subsection collocation\n    set Stabilisation = none\n  end/" \
+    "Invalid value 'none' for the parameter 'Quadrature/collocation/Stabilisation': on a uniform grid 'automatic' leaves the order-2 row as the paper gives it"
   expect_error "$col; $all_orders; s/set Dimension = 2/set Dimension = 1/; s/set Lower corner = 0, 0/set Lower corner = 0/; s/set Upper corner = 1, 0.5/set Upper corner = 1/; s/set Subdivisions = 20, 10/set Subdivisions = 20/" \
     "Invalid value 'all orders' for the parameter 'Quadrature/collocation/Stabilisation': in 1D the stabilised order-2 row has growing modes"
   base_prm=corrosion.prm

@@ -248,6 +248,12 @@ group_collocation() {
   sed "$bb; $(col '  subsection collocation\n    set Stabilisation = all orders\n  end' "$gmres")" base.prm > collocation_all_orders.prm
   expect_valid 1 collocation_all_orders.prm "collocation, bond-based, stabilised order 2, GMRES" out/solution_0.pvtu
   rm -rf out
+  # 'none' without effect: the order-2 lattice row and the LPS rows are
+  # the paper's under 'automatic' too.
+  expect_error "$bb; $(col '  subsection collocation\n    set Stabilisation = none\n  end' "$gmres")" \
+    "Invalid value 'none' for the parameter 'Quadrature/collocation/Stabilisation': on a uniform grid 'automatic' leaves the order-2 row as the paper gives it"
+  expect_error "$(col '  subsection collocation\n    set Stabilisation = none\n  end' "$gmres")" \
+    "Invalid value 'none' for the parameter 'Quadrature/collocation/Stabilisation': the state-based (LPS) rows are not stabilised yet, so the entry has no effect"
   expect_error "$(col '  subsection collocation\n    set Stabilisation = all orders\n  end' "$gmres")" \
     "Invalid value 'all orders' for the parameter 'Quadrature/collocation/Stabilisation': the state-based (LPS) rows are not stabilised yet, so the entry would have no effect; use 'automatic'"
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Method = CG\nend')" \

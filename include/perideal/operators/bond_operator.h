@@ -577,6 +577,9 @@ namespace PeriDEAL
         std::array<std::int64_t, dim> n_tiles{};
         double                        path_factor = 0;
         std::vector<unsigned int>     node_tile, slot_tile;
+        // The nodes of each tile (tile_nodes[tile_first[t]...]).
+        std::vector<std::size_t>      tile_first;
+        std::vector<unsigned int>     tile_nodes;
         std::vector<int>              node_neighbor;
         std::vector<char>             chunk_due;
         std::vector<double>           slot_margin, slot_drift;
@@ -781,6 +784,13 @@ namespace PeriDEAL
       /// (bond_operator_energy.cc).
       double
       node_bond_energy(const unsigned int i) const;
+
+      /// node_bond_energy() of every owned collocation node into
+      /// @p energy (indexed by node, sized n_owned), threaded, on the
+      /// lattice vectorised over the collocation chunks (the same
+      /// operations in the same order, lane by lane).
+      void
+      collocation_bond_energies(std::vector<double> &energy) const;
 
       /// The force of collocation node @p i (slot @p si) from u_slot.
       Tensor<1, dim>

@@ -398,6 +398,8 @@ namespace PeriDEAL
       bool                     use_lattice = false;
       std::size_t              n_slots     = 0;
       std::vector<std::size_t> slot;
+      /// The nodes in the order of their slots.
+      std::vector<unsigned int> nodes_by_slot;
       /// The shared stencil's slot offsets (on the lattice).
       std::vector<std::ptrdiff_t> stencil_offset;
 
@@ -443,11 +445,12 @@ namespace PeriDEAL
     LoopLayout<dim>::make_chunks(const Predicate    &selected,
                                  std::vector<Chunk> &chunks) const
     {
+      // In slot order already: no sort.
       std::vector<std::size_t> slots;
-      for (unsigned int i = 0; i < nodes->size(); ++i)
+      slots.reserve(nodes_by_slot.size());
+      for (const unsigned int i : nodes_by_slot)
         if (selected(i))
           slots.push_back(slot[i]);
-      std::sort(slots.begin(), slots.end());
       cut_into_chunks(
         slots,
         [](const Chunk &, const std::size_t) { return true; },

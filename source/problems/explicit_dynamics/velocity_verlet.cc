@@ -3,12 +3,21 @@
  * The velocity-Verlet integrator of explicit dynamics.
  */
 
+#include <deal.II/base/parallel.h>
+
 #include <perideal/problems/explicit_dynamics/velocity_verlet.h>
 
 namespace PeriDEAL
 {
   namespace Problems
   {
+    namespace
+    {
+      // Entries per task of the threaded updates.
+      constexpr unsigned int grain = 8192;
+    } // namespace
+
+
     void
     VelocityVerlet::set_time_step(const double step)
     {
@@ -32,13 +41,20 @@ namespace PeriDEAL
       const unsigned int n  = u.locally_owned_size();
       double            *pu = u.begin(), *pv = v.begin();
       const double      *pa = a.begin(), *pf = free.data();
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          const double half = pv[k] + 0.5 * dt * pa[k];
-          const double next = pu[k] + dt * half;
-          pv[k]             = pf[k] != 0 ? half : pv[k];
-          pu[k]             = pf[k] != 0 ? next : pu[k];
-        }
+      // Entry by entry: threads change no rounding.
+      dealii::parallel::apply_to_subranges(
+        0u,
+        n,
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int k = begin; k < end; ++k)
+            {
+              const double half = pv[k] + 0.5 * dt * pa[k];
+              const double next = pu[k] + dt * half;
+              pv[k]             = pf[k] != 0 ? half : pv[k];
+              pu[k]             = pf[k] != 0 ? next : pu[k];
+            }
+        },
+        grain);
     }
 
 
@@ -50,11 +66,17 @@ namespace PeriDEAL
       const unsigned int n  = v.locally_owned_size();
       double            *pv = v.begin();
       const double      *pa = a.begin(), *pf = free.data();
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          const double next = pv[k] + 0.5 * dt * pa[k];
-          pv[k]             = pf[k] != 0 ? next : pv[k];
-        }
+      dealii::parallel::apply_to_subranges(
+        0u,
+        n,
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int k = begin; k < end; ++k)
+            {
+              const double next = pv[k] + 0.5 * dt * pa[k];
+              pv[k]             = pf[k] != 0 ? next : pv[k];
+            }
+        },
+        grain);
     }
 
 
