@@ -7,6 +7,7 @@
 #include <deal.II/base/parallel.h>
 
 #include <perideal/operators/bond/bond_kernel.h>
+#include <perideal/operators/bond/stencil_extensions.h>
 #include <perideal/operators/bond_operator.h>
 #include <perideal/operators/bond_operator.templates.h>
 
@@ -101,55 +102,39 @@ namespace PeriDEAL
               for (unsigned int l = 0; l < len; ++l)
                 sum[l] = 0;
               const double *s0i = fail ? s0_slot.data() + first : nullptr;
-              for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
-                {
-                  const std::ptrdiff_t o = layout.stencil_offset[k];
-                  double               xi[dim], n[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      xi[d] = stencil.xi[d][k];
-                      n[d]  = stencil.n[d][k];
-                    }
-                  const double  r     = stencil.r[k];
-                  const double  inv_r = 1. / r;
-                  const double  b     = stencil.b[k];
-                  const double *ui[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    ui[d] = u_slot[d].data() + first;
-                  const auto lanes = [&](auto finite_kinematics,
-                                         auto with_failure_test) {
-                    constexpr bool with_finite =
-                      decltype(finite_kinematics)::value;
-                    constexpr bool with_test =
-                      decltype(with_failure_test)::value;
-#pragma omp simd
-                    for (unsigned int l = 0; l < len; ++l)
-                      {
-                        const auto eta = [&](const unsigned int d) {
-                          return ui[d][l + o] - ui[d][l];
-                        };
-                        const double e =
-                          BondKernel::extension<with_finite, dim>(xi,
-                                                                  n,
-                                                                  r,
-                                                                  eta);
-                        const bool intact =
-                          !with_test || BondKernel::is_intact(e,
-                                                              inv_r,
-                                                              s0i[l],
-                                                              s0i[l + o]);
-                        sum[l] += intact ? BondKernel::energy(b, e) : 0.;
-                      }
-                  };
-                  if (finite && fail)
-                    lanes(std::true_type(), std::true_type());
-                  else if (finite)
-                    lanes(std::true_type(), std::false_type());
-                  else if (fail)
-                    lanes(std::false_type(), std::true_type());
-                  else
-                    lanes(std::false_type(), std::false_type());
-                }
+              // The failure test of node_bond_energy() (1 / r, not the
+              // stencil's inv_r, as there). One loop per kinematics and
+              // test, so that the lane body has no branch.
+              const auto lanes = [&](auto finite_kinematics,
+                                     auto with_failure_test) {
+                constexpr bool with_finite = decltype(finite_kinematics)::value;
+                constexpr bool with_test   = decltype(with_failure_test)::value;
+                for_each_stencil_extension<with_finite, dim>(
+                  stencil,
+                  layout.stencil_offset,
+                  u_slot,
+                  first,
+                  len,
+                  [&](const std::size_t k, const std::ptrdiff_t o) {
+                    const double inv_r = 1. / stencil.r[k];
+                    const double b     = stencil.b[k];
+                    return [&sum, s0i, o, inv_r, b](const unsigned int l,
+                                                    const double       e) {
+                      const bool intact =
+                        !with_test ||
+                        BondKernel::is_intact(e, inv_r, s0i[l], s0i[l + o]);
+                      sum[l] += intact ? BondKernel::energy(b, e) : 0.;
+                    };
+                  });
+              };
+              if (finite && fail)
+                lanes(std::true_type(), std::true_type());
+              else if (finite)
+                lanes(std::true_type(), std::false_type());
+              else if (fail)
+                lanes(std::false_type(), std::true_type());
+              else
+                lanes(std::false_type(), std::false_type());
               for (unsigned int l = 0; l < len; ++l)
                 {
                   const unsigned int i = layout.node_of_slot(first + l);

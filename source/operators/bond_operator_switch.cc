@@ -7,6 +7,7 @@
 #include <deal.II/base/parallel.h>
 
 #include <perideal/operators/bond/bond_kernel.h>
+#include <perideal/operators/bond/stencil_extensions.h>
 #include <perideal/operators/bond_operator.h>
 #include <perideal/operators/bond_operator.templates.h>
 
@@ -214,50 +215,39 @@ namespace PeriDEAL
                   over_fraction[l] = -std::numeric_limits<double>::infinity();
                   over_critical[l] = -std::numeric_limits<double>::infinity();
                 }
-              for (std::size_t k = 0; k < layout.stencil_offset.size(); ++k)
-                {
-                  const std::ptrdiff_t o = layout.stencil_offset[k];
-                  double               xi[dim], n[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      xi[d] = stencil.xi[d][k];
-                      n[d]  = stencil.n[d][k];
-                    }
-                  const double  r     = stencil.r[k];
-                  const double  inv_r = stencil.inv_r[k];
-                  const double *ui[dim];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    ui[d] = u_slot[d].data() + first;
-                  const double *s0i = s0_slot.data() + first;
-                  // One loop per kinematics, so that the lane body has no
-                  // branch.
-                  const auto lanes = [&](auto finite_kinematics) {
-                    constexpr bool with_finite =
-                      decltype(finite_kinematics)::value;
-#pragma omp simd
-                    for (unsigned int l = 0; l < len; ++l)
-                      {
-                        const auto eta = [&](const unsigned int d) {
-                          return ui[d][l + o] - ui[d][l];
-                        };
-                        const double e =
-                          BondKernel::extension<with_finite, dim>(xi,
-                                                                  n,
-                                                                  r,
-                                                                  eta);
-                        const double s0      = std::min(s0i[l], s0i[l + o]);
-                        const double stretch = e * inv_r;
-                        over_fraction[l] =
-                          std::max(over_fraction[l], stretch - fraction * s0);
-                        over_critical[l] =
-                          std::max(over_critical[l], stretch - s0);
-                      }
-                  };
-                  if (finite)
-                    lanes(std::true_type());
-                  else
-                    lanes(std::false_type());
-                }
+              const double *s0i            = s0_slot.data() + first;
+              const auto    lane_of_offset = [&](const std::size_t    k,
+                                              const std::ptrdiff_t o) {
+                const double inv_r = stencil.inv_r[k];
+                return [&over_fraction,
+                        &over_critical,
+                        s0i,
+                        o,
+                        inv_r,
+                        fraction](const unsigned int l, const double e) {
+                  const double s0      = std::min(s0i[l], s0i[l + o]);
+                  const double stretch = e * inv_r;
+                  over_fraction[l] =
+                    std::max(over_fraction[l], stretch - fraction * s0);
+                  over_critical[l] = std::max(over_critical[l], stretch - s0);
+                };
+              };
+              // One loop per kinematics, so that the lane body has no
+              // branch.
+              if (finite)
+                for_each_stencil_extension<true, dim>(stencil,
+                                                      layout.stencil_offset,
+                                                      u_slot,
+                                                      first,
+                                                      len,
+                                                      lane_of_offset);
+              else
+                for_each_stencil_extension<false, dim>(stencil,
+                                                       layout.stencil_offset,
+                                                       u_slot,
+                                                       first,
+                                                       len,
+                                                       lane_of_offset);
               for (unsigned int l = 0; l < len; ++l)
                 {
                   const unsigned int i = layout.node_of_slot(first + l);
