@@ -61,7 +61,13 @@ namespace PeriDEAL
                  << collocation.n_monomials << " monomials), cond(A) ";
           line << std::setprecision(2) << std::scientific
                << collocation.condition << std::defaultfloat << "; "
-               << collocation.n_collocation_nodes << " nodes by collocation, ";
+               << collocation.n_collocation_nodes << " nodes by collocation"
+               << (collocation.n_lower_order > 0 ?
+                     " (" + std::to_string(collocation.n_lower_order) +
+                       " of them by order 2: bad order-" +
+                       std::to_string(settings->order) + " cloud)" :
+                     std::string())
+               << ", ";
           if (hybrid)
             line << collocation.n_fixed_standard
                  << " standard (fixed region), ";

@@ -37,46 +37,48 @@ namespace PeriDEAL
                              "bond-based models."));
       // Rows per node take the stabilised form for order 2 as well: on
       // perturbed clouds the paper's C2 rows have node-local growing modes
-      // (doc/collocation.md Sect. 7.2).
+      // (doc/collocation.md Sect. 7.2). A bad order-4 cloud takes an
+      // order-2 row ('fall back').
       constexpr auto kind = Quadrature::CollocationSettings::RowKind::per_node;
-      const Quadrature::CollocationFit<dim> fit(
-        settings.order,
-        settings.n_collocation,
-        horizon,
-        settings.weight_radius_factor(kind) * horizon);
       // The pair stiffness 2 beta(r) n (x) n; its trace over d weighs the
       // stabilisation term (doc/collocation.md Sect. 7.1).
       const auto stiffness = [&](const double r) {
         return 2. * model->extension_constant(r, horizon);
       };
-      const auto moments =
-        Quadrature::tensor_moments<dim>(fit.basis(), stiffness, horizon);
-      const double                     gamma = settings.stabilisation(kind);
       NodeRowFits<dim, Tensor<2, dim>> fits;
-      const CollocationReport report = fit_node_rows<dim, Tensor<2, dim>>(
-        *nodes,
-        *lists,
-        horizon,
-        settings,
-        fit,
-        standard,
-        [&](const unsigned int                 i,
-            const std::vector<Tensor<1, dim>> &cloud,
-            const FullMatrix<double>          &q) {
-          std::vector<Tensor<2, dim>> row = Quadrature::tensor_row(moments, q);
-          if (gamma > 0)
-            Quadrature::add_stabilisation<dim>(row,
-                                               fit.basis(),
-                                               cloud,
-                                               q,
-                                               stiffness,
-                                               horizon,
-                                               gamma);
-          for (auto &block : row)
-            block *= (*nodes)[i].volume();
-          return row;
-        },
-        fits);
+      const CollocationReport          report =
+        fit_node_rows_with_fallback<dim, Tensor<2, dim>>(
+          *nodes,
+          *lists,
+          horizon,
+          settings,
+          standard,
+          [&](const Quadrature::CollocationSettings &pass,
+              const Quadrature::CollocationFit<dim> &fit)
+            -> RowOfFit<dim, Tensor<2, dim>> {
+            const auto moments =
+              Quadrature::tensor_moments<dim>(fit.basis(), stiffness, horizon);
+            const double gamma = pass.stabilisation(kind);
+            return [&, moments, gamma, basis = fit.basis()](
+                     const unsigned int                 i,
+                     const std::vector<Tensor<1, dim>> &cloud,
+                     const FullMatrix<double>          &q) {
+              std::vector<Tensor<2, dim>> row =
+                Quadrature::tensor_row(moments, q);
+              if (gamma > 0)
+                Quadrature::add_stabilisation<dim>(row,
+                                                   basis,
+                                                   cloud,
+                                                   q,
+                                                   stiffness,
+                                                   horizon,
+                                                   gamma);
+              for (auto &block : row)
+                block *= (*nodes)[i].volume();
+              return row;
+            };
+          },
+          fits);
 
       collocation_node.assign(nodes->size(), 0);
       node_row_of.assign(nodes->size(), -1);

@@ -10,6 +10,7 @@
 #include <perideal/operators/collocation_node_rows.h>
 #include <perideal/quadrature/exact_partial_volume.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -229,18 +230,99 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim, Entry)                      \
-  template CollocationReport fit_node_rows<dim, Entry>(       \
-    const Discretization::NodeSet<dim> &,                     \
-    const Discretization::NeighborList<dim> &,                \
-    const double,                                             \
-    const Quadrature::CollocationSettings &,                  \
-    const Quadrature::CollocationFit<dim> &,                  \
-    const std::vector<bool> &,                                \
-    const std::function<                                      \
-      std::vector<Entry>(const unsigned int,                  \
-                         const std::vector<Tensor<1, dim>> &, \
-                         const FullMatrix<double> &)> &,      \
+    template <int dim, typename Entry>
+    CollocationReport
+    fit_node_rows_with_fallback(
+      const Discretization::NodeSet<dim>          &nodes,
+      const Discretization::NeighborList<dim>     &lists,
+      const double                                 horizon,
+      const Quadrature::CollocationSettings       &settings,
+      const std::vector<bool>                     &standard,
+      const std::function<RowOfFit<dim, Entry>(
+        const Quadrature::CollocationSettings &,
+        const Quadrature::CollocationFit<dim> &)> &row_maker,
+      NodeRowFits<dim, Entry>                     &rows)
+    {
+      constexpr auto kind = Quadrature::CollocationSettings::RowKind::per_node;
+      const auto     fit_of = [&](const Quadrature::CollocationSettings &s) {
+        return Quadrature::CollocationFit<dim>(s.order,
+                                               s.n_collocation,
+                                               horizon,
+                                               s.weight_radius_factor(kind) *
+                                                 horizon);
+      };
+      const Quadrature::CollocationFit<dim> fit = fit_of(settings);
+      CollocationReport                     report =
+        fit_node_rows<dim, Entry>(nodes,
+                                  lists,
+                                  horizon,
+                                  settings,
+                                  fit,
+                                  standard,
+                                  row_maker(settings, fit),
+                                  rows);
+      // Bad clouds are left only with 'fall back' (fit_node_rows() stops
+      // the run otherwise); the count is the same on every process.
+      if (settings.order <= 2 || report.n_ill_conditioned == 0)
+        return report;
+      Quadrature::CollocationSettings lower           = settings;
+      lower.order                                     = 2;
+      lower.n_collocation                             = 0;
+      const Quadrature::CollocationFit<dim> lower_fit = fit_of(lower);
+      // Every node with a row or kept standard by the caller is done; the
+      // second pass sees the bad clouds (and finds the cut balls again).
+      std::vector<bool> done(nodes.n_owned(), false);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        done[i] = (i < standard.size() && standard[i]) || rows.has_row[i];
+      NodeRowFits<dim, Entry> lower_rows;
+      const CollocationReport lower_report =
+        fit_node_rows<dim, Entry>(nodes,
+                                  lists,
+                                  horizon,
+                                  lower,
+                                  lower_fit,
+                                  done,
+                                  row_maker(lower, lower_fit),
+                                  lower_rows);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        if (lower_rows.has_row[i])
+          {
+            rows.has_row[i]   = true;
+            rows.neighbors[i] = std::move(lower_rows.neighbors[i]);
+            rows.weights[i]   = std::move(lower_rows.weights[i]);
+          }
+      report.n_lower_order = lower_report.n_collocation_nodes;
+      report.n_collocation_nodes += lower_report.n_collocation_nodes;
+      report.n_ill_conditioned = lower_report.n_ill_conditioned;
+      if (lower_report.n_collocation_nodes > 0)
+        report.n_collocation_min =
+          std::min(report.n_collocation_min, lower_report.n_collocation_min);
+      return report;
+    }
+
+
+#define PERIDEAL_INSTANTIATE(dim, Entry)                                \
+  template CollocationReport fit_node_rows<dim, Entry>(                 \
+    const Discretization::NodeSet<dim> &,                               \
+    const Discretization::NeighborList<dim> &,                          \
+    const double,                                                       \
+    const Quadrature::CollocationSettings &,                            \
+    const Quadrature::CollocationFit<dim> &,                            \
+    const std::vector<bool> &,                                          \
+    const std::function<                                                \
+      std::vector<Entry>(const unsigned int,                            \
+                         const std::vector<Tensor<1, dim>> &,           \
+                         const FullMatrix<double> &)> &,                \
+    NodeRowFits<dim, Entry> &);                                         \
+  template CollocationReport fit_node_rows_with_fallback<dim, Entry>(   \
+    const Discretization::NodeSet<dim> &,                               \
+    const Discretization::NeighborList<dim> &,                          \
+    const double,                                                       \
+    const Quadrature::CollocationSettings &,                            \
+    const std::vector<bool> &,                                          \
+    const std::function<                                                \
+      RowOfFit<dim, Entry>(const Quadrature::CollocationSettings &,     \
+                           const Quadrature::CollocationFit<dim> &)> &, \
     NodeRowFits<dim, Entry> &);
     template <int dim>
     using Block = Tensor<2, dim>;

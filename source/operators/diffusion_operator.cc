@@ -626,41 +626,44 @@ namespace PeriDEAL
             for (unsigned int i = 0; i < n_owned; ++i)
               standard[i] = bond_state->any_broken(i);
           // Rows per node take the stabilised form for order 2 as well
-          // (doc/collocation.md Sect. 7.2).
-          const double gamma = settings.stabilisation(PerNode);
-          const Quadrature::CollocationFit<dim> fit(
-            settings.order,
-            settings.n_collocation,
-            horizon,
-            settings.weight_radius_factor(PerNode) * horizon);
+          // (doc/collocation.md Sect. 7.2). A bad order-4 cloud takes an
+          // order-2 row ('fall back').
           const auto conductance = [&](const double r) {
             return kernel->conductance(r);
           };
-          const auto moments =
-            Quadrature::scalar_moments<dim>(fit.basis(), conductance, horizon);
           NodeRowFits<dim, double> fits;
-          const CollocationReport  report = fit_node_rows<dim, double>(
-            *nodes,
-            *lists,
-            horizon,
-            settings,
-            fit,
-            standard,
-            [&](const unsigned int,
-                const std::vector<Tensor<1, dim>> &cloud,
-                const FullMatrix<double>          &q) {
-              std::vector<double> row = Quadrature::scalar_row(moments, q);
-              if (gamma > 0)
-                Quadrature::add_stabilisation<dim>(row,
-                                                   fit.basis(),
-                                                   cloud,
-                                                   q,
-                                                   conductance,
-                                                   horizon,
-                                                   gamma);
-              return row;
-            },
-            fits);
+          const CollocationReport  report =
+            fit_node_rows_with_fallback<dim, double>(
+              *nodes,
+              *lists,
+              horizon,
+              settings,
+              standard,
+              [&](const Quadrature::CollocationSettings &pass,
+                  const Quadrature::CollocationFit<dim> &fit)
+                -> RowOfFit<dim, double> {
+                const auto moments =
+                  Quadrature::scalar_moments<dim>(fit.basis(),
+                                                  conductance,
+                                                  horizon);
+                const double gamma = pass.stabilisation(PerNode);
+                return [&, moments, gamma, basis = fit.basis()](
+                         const unsigned int,
+                         const std::vector<Tensor<1, dim>> &cloud,
+                         const FullMatrix<double>          &q) {
+                  std::vector<double> row = Quadrature::scalar_row(moments, q);
+                  if (gamma > 0)
+                    Quadrature::add_stabilisation<dim>(row,
+                                                       basis,
+                                                       cloud,
+                                                       q,
+                                                       conductance,
+                                                       horizon,
+                                                       gamma);
+                  return row;
+                };
+              },
+              fits);
 
           // The rows replace the stored bonds of their nodes.
           std::vector<std::size_t> first(1, 0);

@@ -81,8 +81,11 @@ namespace PeriDEAL
           "fall back",
           Patterns::Selection("fall back|error"),
           "What a node does whose moment matrix has a condition number "
-          "above 1e12: 'fall back' to the standard scheme (counted and "
-          "reported) or stop the run ('error').");
+          "above 1e12 (or, with a row per node, whose stabilised row has a "
+          "non-positive diagonal): 'fall back' to the standard scheme "
+          "(counted and reported; with a row per node and 'Order = 4' the "
+          "node first tries an order-2 row, also counted) or stop the run "
+          "('error').");
         prm.declare_entry(
           "Stabilisation",
           "automatic",

@@ -38,6 +38,10 @@ namespace PeriDEAL
       /// Owned nodes that fell back to the standard scheme because the
       /// cloud's cond(A) exceeds CollocationSettings::condition_limit.
       std::size_t n_ill_conditioned = 0;
+      /// Owned nodes whose cloud was bad for the order asked (above 2) and
+      /// that took an order-2 row instead ('fall back';
+      /// fit_node_rows_with_fallback()); counted in n_collocation_nodes.
+      std::size_t n_lower_order = 0;
       /// Owned full-stencil nodes kept standard because the caller said
       /// so (the fixed standard region of the hybrid scheme).
       std::size_t n_fixed_standard = 0;
@@ -109,6 +113,38 @@ namespace PeriDEAL
                                        const std::vector<Tensor<1, dim>> &,
                                        const FullMatrix<double> &)> &row_of_fit,
                   NodeRowFits<dim, Entry>                           &rows);
+
+
+    /// The row of one node from its cloud and fit (fit_node_rows()).
+    template <int dim, typename Entry>
+    using RowOfFit =
+      std::function<std::vector<Entry>(const unsigned int,
+                                       const std::vector<Tensor<1, dim>> &,
+                                       const FullMatrix<double> &)>;
+
+    /**
+     * fit_node_rows() with the fit of @p settings for rows per node
+     * (CollocationSettings::RowKind::per_node), and, with 'fall back' and
+     * an order above 2, a second pass at order 2 over the nodes whose
+     * cloud was bad for that order: they keep a collocation row (exact for
+     * quadratics, stabilised as order-2 rows per node are) instead of the
+     * standard scheme, counted in CollocationReport::n_lower_order. Only
+     * the nodes bad at order 2 as well fall back to the standard scheme.
+     * @p row_maker gives the row of one node for the settings and fit of a
+     * pass (so that it computes the moments of that fit's basis once).
+     */
+    template <int dim, typename Entry>
+    CollocationReport
+    fit_node_rows_with_fallback(
+      const Discretization::NodeSet<dim>          &nodes,
+      const Discretization::NeighborList<dim>     &lists,
+      const double                                 horizon,
+      const Quadrature::CollocationSettings       &settings,
+      const std::vector<bool>                     &standard,
+      const std::function<RowOfFit<dim, Entry>(
+        const Quadrature::CollocationSettings &,
+        const Quadrature::CollocationFit<dim> &)> &row_maker,
+      NodeRowFits<dim, Entry>                     &rows);
   } // namespace Operators
 } // namespace PeriDEAL
 

@@ -167,9 +167,13 @@ namespace PeriDEAL
               line << report.n_monomials << " monomials), cond(A) up to "
                    << std::setprecision(2) << std::scientific
                    << report.condition << std::defaultfloat << "; "
-                   << report.n_collocation_nodes << " nodes by collocation, "
-                   << report.n_fixed_standard << " standard (insulating bond), "
-                   << report.n_cut_nodes
+                   << report.n_collocation_nodes << " nodes by collocation"
+                   << (report.n_lower_order > 0 ?
+                         " (" + std::to_string(report.n_lower_order) +
+                           " of them by order 2: bad order-4 cloud)" :
+                         std::string())
+                   << ", " << report.n_fixed_standard
+                   << " standard (insulating bond), " << report.n_cut_nodes
                    << " standard (ball cut by the surface), "
                    << report.n_ill_conditioned
                    << " standard (ill-conditioned or indefinite cloud)";
