@@ -51,11 +51,8 @@ namespace PeriDEAL
                   const Quadrature::CollocationSettings   &settings,
                   const Quadrature::CollocationFit<dim>   &fit,
                   const std::vector<bool>                 &standard,
-                  const std::function<
-                    std::vector<Entry>(const unsigned int,
-                                       const std::vector<Tensor<1, dim>> &,
-                                       const FullMatrix<double> &)> &row_of_fit,
-                  NodeRowFits<dim, Entry>                           &rows)
+                  const RowOfFit<dim, Entry>              &row_of_fit,
+                  NodeRowFits<dim, Entry>                 &rows)
     {
       const MPI_Comm                            comm = nodes.get_communicator();
       const unsigned int                        n_owned = nodes.n_owned();
@@ -309,10 +306,7 @@ namespace PeriDEAL
     const Quadrature::CollocationSettings &,                            \
     const Quadrature::CollocationFit<dim> &,                            \
     const std::vector<bool> &,                                          \
-    const std::function<                                                \
-      std::vector<Entry>(const unsigned int,                            \
-                         const std::vector<Tensor<1, dim>> &,           \
-                         const FullMatrix<double> &)> &,                \
+    const RowOfFit<dim, Entry> &,                                       \
     NodeRowFits<dim, Entry> &);                                         \
   template CollocationReport fit_node_rows_with_fallback<dim, Entry>(   \
     const Discretization::NodeSet<dim> &,                               \

@@ -83,6 +83,14 @@ namespace PeriDEAL
     };
 
 
+    /// The row of one node from its cloud and fit (fit_node_rows()).
+    template <int dim, typename Entry>
+    using RowOfFit =
+      std::function<std::vector<Entry>(const unsigned int,
+                                       const std::vector<Tensor<1, dim>> &,
+                                       const FullMatrix<double> &)>;
+
+
     /**
      * Fit a collocation row for every owned node of @p nodes that is not
      * @p standard and whose ball lies in the body and its layers (the exact
@@ -108,19 +116,9 @@ namespace PeriDEAL
                   const Quadrature::CollocationSettings   &settings,
                   const Quadrature::CollocationFit<dim>   &fit,
                   const std::vector<bool>                 &standard,
-                  const std::function<
-                    std::vector<Entry>(const unsigned int,
-                                       const std::vector<Tensor<1, dim>> &,
-                                       const FullMatrix<double> &)> &row_of_fit,
-                  NodeRowFits<dim, Entry>                           &rows);
+                  const RowOfFit<dim, Entry>              &row_of_fit,
+                  NodeRowFits<dim, Entry>                 &rows);
 
-
-    /// The row of one node from its cloud and fit (fit_node_rows()).
-    template <int dim, typename Entry>
-    using RowOfFit =
-      std::function<std::vector<Entry>(const unsigned int,
-                                       const std::vector<Tensor<1, dim>> &,
-                                       const FullMatrix<double> &)>;
 
     /**
      * fit_node_rows() with the fit of @p settings for rows per node
