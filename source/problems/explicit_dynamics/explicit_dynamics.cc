@@ -14,6 +14,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/problems/explicit_dynamics.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -28,6 +29,21 @@ namespace PeriDEAL
       setup(simulator);
       choose_time_step(simulator);
       energy_monitor.reset();
+      {
+        // The round-off floor of the energy monitor: the largest
+        // coordinate and the total mass, over all processes.
+        const auto &nodes              = simulator.get_nodes();
+        double      largest_coordinate = 0;
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          largest_coordinate =
+            std::max(largest_coordinate, nodes[i].location.norm());
+        energy_monitor.set_round_off_energy(
+          EnergyBalanceMonitor::round_off_energy(
+            mass.l1_norm(),
+            Utilities::MPI::max(largest_coordinate,
+                                simulator.get_communicator()),
+            dt_bound));
+      }
       if (resume)
         {
           read_checkpoint(simulator);
