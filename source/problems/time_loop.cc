@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 
 namespace PeriDEAL
 {
@@ -455,7 +456,10 @@ namespace PeriDEAL
         "O(dt^2) oscillation (doc/explicit-dynamics.md, 'The energy "
         "balance'), so a larger rise is energy made by an unstable step or "
         "by the model: the run stops, unless 'Allow energy growth' is set. "
-        "> 0.");
+        "Energies below the round-off energy (1/2) lambda_max sum m (100 "
+        "eps |x|_max)^2 (lambda_max = 4/dt_bound^2) are not judged against "
+        "each other: that is the noise of a run whose loads have not "
+        "started. > 0.");
       prm.declare_entry("Allow energy growth",
                         "false",
                         Patterns::Bool(),
@@ -489,6 +493,25 @@ namespace PeriDEAL
 
 
     void
+    EnergyBalanceMonitor::set_round_off_energy(const double energy)
+    {
+      round_off = energy;
+    }
+
+
+    double
+    EnergyBalanceMonitor::round_off_energy(const double total_mass,
+                                           const double largest_coordinate,
+                                           const double dt_bound)
+    {
+      const double u = 100 * std::numeric_limits<double>::epsilon() *
+                       largest_coordinate;
+      // (1/2) lambda_max M u^2 with lambda_max = 4 / dt_bound^2.
+      return 2 * total_mass * (u / dt_bound) * (u / dt_bound);
+    }
+
+
+    void
     EnergyBalanceMonitor::observe(const Row &row)
     {
       const auto &[kinetic, elastic, external_work, verlet_term] = row;
@@ -512,8 +535,10 @@ namespace PeriDEAL
     {
       const auto &[kinetic, elastic, external_work, verlet_term] = row;
       const double balance = kinetic + elastic - external_work - verlet_term;
-      const double energy =
-        std::max({scale, kinetic + elastic, std::abs(external_work)});
+      // The round-off floor: below it, the energies are the noise of the
+      // positions' round-off (the run before a delayed load starts).
+      const double energy = std::max(
+        {scale, kinetic + elastic, std::abs(external_work), round_off});
       const double rise = balance - lowest;
       // The sums are the same on every process; the decision is reduced
       // all the same, so that no process can go on alone.
@@ -533,7 +558,8 @@ namespace PeriDEAL
         << rise / energy
         << " of the largest kinetic + elastic energy or external work so "
            "far ("
-        << energy << "), more than '" << section
+        << energy << (energy == round_off ? ", the round-off energy" : "")
+        << "), more than '" << section
         << "/Energy balance tolerance' = " << tolerance
         << ". Broken bonds only lower the balance, so the run made energy: "
            "a time step that is not stable ('"

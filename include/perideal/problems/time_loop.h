@@ -322,6 +322,12 @@ namespace PeriDEAL
      * stops the run (or, with 'Allow energy growth', prints one warning).
      * The inputs are sums over all processes, and the decision is reduced,
      * so every process decides alike.
+     *
+     * Energies at the level of round-off are not judged: the scale is at
+     * least the round-off energy given by set_round_off_energy(), the
+     * largest elastic energy a displacement of the size of the positions'
+     * round-off can hold (before a delayed load starts, the energies are
+     * that noise, and their relative rise is meaningless).
      */
     class EnergyBalanceMonitor
     {
@@ -344,6 +350,28 @@ namespace PeriDEAL
       /// Forget the rows seen (a new run).
       void
       reset();
+
+      /**
+       * The energy below which a balance is round-off: the scale a rise is
+       * judged against is never below it. ExplicitDynamics gives
+       * (1/2) lambda_max sum m (100 eps |x|_max)^2 (round_off_energy()).
+       */
+      void
+      set_round_off_energy(const double energy);
+
+      /**
+       * The largest elastic energy (1/2) u^T K u <= (1/2) lambda_max
+       * sum_k m_k u_k^2 of a displacement whose every component is the
+       * round-off of a position, 100 eps |x|_max (the factor 100 covers
+       * the operations of a stretch or a fitted row), with lambda_max
+       * = 4 / dt_bound^2 the bound of M^-1 K that the stability bound
+       * comes from and @p total_mass the sum of the masses of all degrees
+       * of freedom.
+       */
+      static double
+      round_off_energy(const double total_mass,
+                       const double largest_coordinate,
+                       const double dt_bound);
 
       /// Take a row without checking it (rows restored from a checkpoint,
       /// which do not keep the Verlet term: 0, which can only hide a rise).
@@ -370,6 +398,8 @@ namespace PeriDEAL
       /// Rows seen; the lowest balance; the largest kinetic + elastic.
       std::uint64_t n_rows = 0;
       double        lowest = 0, scale = 0;
+      /// Energies below it are round-off (set_round_off_energy()).
+      double round_off = 0;
     };
   } // namespace Problems
 } // namespace PeriDEAL

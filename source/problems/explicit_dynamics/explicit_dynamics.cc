@@ -14,6 +14,7 @@
 #include <perideal/base/collective_checks.h>
 #include <perideal/problems/explicit_dynamics.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -28,6 +29,21 @@ namespace PeriDEAL
       setup(simulator);
       choose_time_step(simulator);
       energy_monitor.reset();
+      {
+        // The round-off floor of the energy monitor: the largest
+        // coordinate and the total mass, over all processes.
+        const auto &nodes              = simulator.get_nodes();
+        double      largest_coordinate = 0;
+        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+          largest_coordinate =
+            std::max(largest_coordinate, nodes[i].location.norm());
+        energy_monitor.set_round_off_energy(
+          EnergyBalanceMonitor::round_off_energy(
+            mass.l1_norm(),
+            Utilities::MPI::max(largest_coordinate,
+                                simulator.get_communicator()),
+            dt_bound));
+      }
       if (resume)
         {
           read_checkpoint(simulator);
@@ -218,13 +234,22 @@ namespace PeriDEAL
       if (with_load)
         work = integrator.add_load_work(work, load_factor, load, v, free_dof);
       integrator.advance_second_half(v, a, free_dof);
+      // The work of the reactions R = m a - f on the prescribed
+      // components: the change of their kinetic energy, m a v dt summed
+      // exactly, less the trapezoidal work of the bond forces. The
+      // inertial part as m (v1 - v0) / dt * (u1 - u0) was this only where
+      // u1 - u0 = dt (v0 + v1) / 2: a prescribed velocity that jumps
+      // (a load that starts late) moves the node by dt v(t - dt/2), so the
+      // kinetic energy of the jump came with no work, or with twice it,
+      // and the energy monitor stopped a correct run.
       for (unsigned int q = 0; q < prescribed.size(); ++q)
         {
-          const unsigned int k = prescribed[q].index;
-          const double       reaction =
-            mass.local_element(k) * (v.local_element(k) - old_v[q]) / dt -
-            0.5 * (old_f[q] + force.local_element(k));
-          work += reaction * (u.local_element(k) - old_u[q]);
+          const unsigned int k  = prescribed[q].index;
+          const double       v1 = v.local_element(k);
+          work += 0.5 * mass.local_element(k) * (v1 - old_v[q]) *
+                    (v1 + old_v[q]) -
+                  0.5 * (old_f[q] + force.local_element(k)) *
+                    (u.local_element(k) - old_u[q]);
         }
       external_work += Utilities::MPI::sum(work, simulator.get_communicator());
       check_finite(simulator);
