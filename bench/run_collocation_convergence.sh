@@ -72,6 +72,7 @@ else
     "fixed_m_3d_perturbed 3 sine m-ratio 3 12 16 24 32 40"
     "fixed_delta_2d 2 sine_pd length 0.1 20 30 40 60 80 120"
     "fixed_m_2d 2 sine_pd m-ratio 3 20 40 80 160 320"
+    "fixed_m_3d 3 sine_pd m-ratio 3 12 16 24 32 40"
     "fixed_m_3d_m4 3 sine_pd m-ratio 4 16 24 32 40"
     "fixed_m_2d_perturbed 2 sine_pd m-ratio 3 20 40 80 160 320"
   )

@@ -51,8 +51,17 @@ for run in runs:
                      initiation_us=f"{start:.1f}",
                      initial_angle_deg=f"{initial:.1f}",
                      overall_angle_deg=f"{overall:.1f}",
-                     error_vs_experiment_70_deg=f"{initial - 70:.1f}"))
+                     error_vs_experiment_70_deg=f"{initial - 70:.1f}",
+                     scheme=run.get("scheme", "standard"),
+                     standard_nodes_percent=run.get("standard_nodes_percent",
+                                                    "100"),
+                     late_switches=run.get("late_switches", "0"),
+                     broken_bonds=data[-1]["broken_bonds"],
+                     final_tip_mm=f"({float(data[-1]['tip_x'])*1e3:.1f}, "
+                                  f"{float(data[-1]['tip_y'])*1e3:.1f})"))
     label = f"{run['dim']}D h={h*1e3:g} mm m={m:g} v={run['velocity']}"
+    if run.get("scheme", "standard") != "standard":
+        label += " " + run["scheme"]
     ax1.plot((x + 0.05) * 1e3, (y + 0.025) * 1e3, ".-", ms=2, label=label)
     ax2.plot(float(run["wall_seconds"]), initial, "o", label=label)
 with open(f"{out}/kalthoff_winkler.csv", "w", newline="") as f:

@@ -96,13 +96,19 @@ namespace PeriDEAL
             if (i < nodes->n_owned() && is_collocation_node(i))
               missed.push_back(i);
           missed_switches += missed.size();
+          // The work lists take the broken bonds on every process first:
+          // make_standard() rebuilds them only where a node it switches
+          // lost a bond, so a process that has changed nodes but no
+          // missed one kept its old lists, and computed forces through
+          // broken bonds, when another process had a missed node (1 and 2
+          // processes broke different bonds on the Kalthoff-Winkler
+          // impact).
+          update_work_lists(changed);
           const bool any_missed =
             Utilities::MPI::max(missed.empty() ? 0 : 1,
                                 nodes->get_communicator()) == 1;
           if (any_missed)
             make_standard(missed);
-          else
-            update_work_lists(changed);
         }
       return n_new;
     }

@@ -504,8 +504,8 @@ namespace PeriDEAL
                                            const double largest_coordinate,
                                            const double dt_bound)
     {
-      const double u = 100 * std::numeric_limits<double>::epsilon() *
-                       largest_coordinate;
+      const double u =
+        100 * std::numeric_limits<double>::epsilon() * largest_coordinate;
       // (1/2) lambda_max M u^2 with lambda_max = 4 / dt_bound^2.
       return 2 * total_mass * (u / dt_bound) * (u / dt_bound);
     }

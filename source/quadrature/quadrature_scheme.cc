@@ -102,7 +102,7 @@ namespace PeriDEAL
           "gives them and stay unchanged. 'all orders': the order-2 row of a "
           "uniform grid (2D, 3D) is stabilised too; its largest eigenvalue "
           "is up to 4 times smaller, so explicit time steps are up to twice "
-          "as long (the choice for explicit dynamics), and it is 5-18 times "
+          "as long (the choice for explicit dynamics), and it is 1.3-18 times "
           "closer to the PD solution, though 3-4 times farther from the "
           "classical one, whose difference the paper's row partly cancels "
           "(Sect. 7.3; not in 1D, where it has growing modes). "

@@ -352,11 +352,13 @@ namespace PeriDEAL
       /// The hybrid scheme's settings (nullptr: another scheme), the
       /// all-standard stability bounds (Gershgorin, power method), and the
       /// counts: all nodes, standard nodes now, scans of the bonds.
-      const Quadrature::HybridSettings<dim> *hybrid    = nullptr;
-      double                           standard_lambda = 0, standard_power = 0;
-      std::size_t                      n_total_nodes = 0, n_standard_nodes = 0;
-      std::uint64_t                    n_switch_scans = 0;
-      std::vector<std::vector<double>> energy_rows;
+      const Quadrature::HybridSettings<dim> *hybrid = nullptr;
+      double        standard_lambda = 0, standard_power = 0;
+      std::size_t   n_total_nodes = 0, n_standard_nodes = 0;
+      std::uint64_t n_switch_scans = 0;
+      /// A late switch was reported (a warning once per run).
+      bool                                        late_switch_warned = false;
+      std::vector<std::vector<double>>            energy_rows;
       std::vector<std::pair<double, std::string>> records;
       /// The input entries that define the state (parse time), then, once
       /// checkpoint_keys() ran, the properties of the discretisation.

@@ -154,8 +154,13 @@ namespace PeriDEAL
           if (simulator.get_node_perturbation() > 0)
             {
               // Irregular nodes: a row per node. Without a shared row there
-              // is no symbol to check; growing modes of single rows show in
-              // the power-method estimate of the time step below.
+              // is no symbol to check. A row whose diagonal is not negative
+              // falls back (or stops the run); growing modes that a row's
+              // diagonal does not show are not checked at set-up
+              // (doc/collocation.md Sect. 11.2): the power-method estimate
+              // below bounds the largest |eigenvalue|, not the largest real
+              // part. The stabilised order-2 rows per node (the default)
+              // had none in the bond-based study of Sect. 7.2.
               const Operators::CollocationReport report =
                 op.use_collocation_per_node(*settings);
               line << "a row per node (irregular nodes), ";

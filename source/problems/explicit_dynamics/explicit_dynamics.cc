@@ -246,10 +246,10 @@ namespace PeriDEAL
         {
           const unsigned int k  = prescribed[q].index;
           const double       v1 = v.local_element(k);
-          work += 0.5 * mass.local_element(k) * (v1 - old_v[q]) *
-                    (v1 + old_v[q]) -
-                  0.5 * (old_f[q] + force.local_element(k)) *
-                    (u.local_element(k) - old_u[q]);
+          work +=
+            0.5 * mass.local_element(k) * (v1 - old_v[q]) * (v1 + old_v[q]) -
+            0.5 * (old_f[q] + force.local_element(k)) *
+              (u.local_element(k) - old_u[q]);
         }
       external_work += Utilities::MPI::sum(work, simulator.get_communicator());
       check_finite(simulator);

@@ -117,7 +117,30 @@ namespace PeriDEAL
       // The count for the energy row and the progress line (the nodes
       // that commit_broken_bonds() switched included).
       if (records_energies())
-        n_standard_nodes = n_total_nodes - bond_operator.n_collocation_nodes();
+        {
+          n_standard_nodes =
+            n_total_nodes - bond_operator.n_collocation_nodes();
+          // Late switches, checked with the energy rows (a reduction there
+          // already): the first one is reported while the run goes on.
+          if (hybrid->adaptive && !late_switch_warned &&
+              bond_operator.n_missed_switches() > 0)
+            {
+              late_switch_warned = true;
+              simulator.get_pcout()
+                << "Warning: by step " << step_number
+                << " (t = " << to_string(time)
+                << " s) a bond of a collocation node "
+                << "broke or passed its critical stretch before the node "
+                   "switched (a late switch: the bond went from below "
+                   "'Quadrature/hybrid/Critical stretch fraction' = "
+                << to_string(hybrid->alpha)
+                << " of its critical stretch to beyond it within one "
+                   "step, so it broke up to one step late). A smaller "
+                   "fraction switches earlier; the count is in the summary "
+                   "at the end."
+                << std::endl;
+            }
+        }
       // Fixed: a bond of a collocation node that broke from its standard
       // end this step (commit_broken_bonds() then switched the node) means
       // the crack has left the region, as a scan would find.
@@ -172,6 +195,15 @@ namespace PeriDEAL
         << " late switches (a bond of a collocation node broke or was past "
            "its critical stretch when found)"
         << std::defaultfloat << std::endl;
+      if (missed > 0 && hybrid->adaptive)
+        simulator.get_pcout()
+          << "Warning: " << missed
+          << " late switches: those bonds broke up to one step later than "
+             "the standard scheme would break them. Lower "
+             "'Quadrature/hybrid/Critical stretch fraction' (now "
+          << to_string(hybrid->alpha)
+          << ") to switch earlier (doc/collocation.md, 'Late switches')."
+          << std::endl;
     }
 
 
