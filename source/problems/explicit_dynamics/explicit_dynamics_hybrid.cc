@@ -134,10 +134,10 @@ namespace PeriDEAL
                    "switched (a late switch: the bond went from below "
                    "'Quadrature/hybrid/Critical stretch fraction' = "
                 << to_string(hybrid->alpha)
-                << " of its critical stretch to beyond it within one "
-                   "step, so it broke up to one step late). A smaller "
-                   "fraction switches earlier; the count is in the summary "
-                   "at the end."
+                << " of its critical stretch to beyond it within one step, "
+                   "or broke from its standard end first, so it broke up "
+                   "to one step late). A smaller fraction switches earlier; "
+                   "the count is in the summary at the end."
                 << std::endl;
             }
         }
