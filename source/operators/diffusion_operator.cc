@@ -64,10 +64,10 @@ namespace PeriDEAL
       row_entries.clear();
       standard_node.assign(nodes->n_owned(), false);
       keep_interface = false;
-      bulk_offset  = layout.stencil_offset;
-      bulk_mu      = stencil_mu;
-      bulk_sum     = stencil_sum;
-      bulk_abs_sum = stencil_sum;
+      bulk_offset    = layout.stencil_offset;
+      bulk_mu        = stencil_mu;
+      bulk_sum       = stencil_sum;
+      bulk_abs_sum   = stencil_sum;
       // Bond slots and conductances of the owned nodes that do not have the
       // stencil's neighbourhood (those that do are read off the stencil).
       stored_first.assign(nodes->n_owned() + 1, 0);
@@ -209,10 +209,9 @@ namespace PeriDEAL
           if (!collocation)
             ;
           else if (on_stencil)
-            largest_geometric_sum =
-              std::max({largest_geometric_sum,
-                        stencil_sum,
-                        bulk_row ? bulk_abs_sum : 0.});
+            largest_geometric_sum = std::max({largest_geometric_sum,
+                                              stencil_sum,
+                                              bulk_row ? bulk_abs_sum : 0.});
           else
             {
               double bonds = 0, row = 0;
@@ -227,10 +226,8 @@ namespace PeriDEAL
           if (on_stencil && intact && uniform && !(by_row && row_node[i]))
             {
               const unsigned char row = by_row ? 1 : 0;
-              const double        abs_sum =
-                row == 1 ? bulk_abs_sum : stencil_sum;
-              largest_geometric_sum =
-                std::max(largest_geometric_sum, abs_sum);
+              const double abs_sum    = row == 1 ? bulk_abs_sum : stencil_sum;
+              largest_geometric_sum = std::max(largest_geometric_sum, abs_sum);
               if (factor[p * n_phases + p] == 0)
                 zero_slots.push_back(layout.slot[i]);
               else
@@ -292,11 +289,9 @@ namespace PeriDEAL
       // slots, cut where the row or the phase changes.
       std::sort(bulk_slots.begin(), bulk_slots.end());
       std::vector<std::size_t>   sorted_slots;
-      std::vector<unsigned char> row_of_slot(bulk_slots.empty() ?
-                                               0 :
-                                               std::get<0>(bulk_slots.back()) +
-                                                 1,
-                                             0);
+      std::vector<unsigned char> row_of_slot(
+        bulk_slots.empty() ? 0 : std::get<0>(bulk_slots.back()) + 1,
+        0);
       for (const auto &bulk : bulk_slots)
         {
           sorted_slots.push_back(std::get<0>(bulk));
@@ -363,31 +358,31 @@ namespace PeriDEAL
       const std::array<const std::vector<double> *, 2> row_mu = {
         {&stencil_mu, &bulk_mu}};
       const auto &chunks = work().chunks;
-      layout.for_chunk_ranges(chunks.size(),
-                              [&](const std::size_t begin,
-                                  const std::size_t end) {
-                                alignas(64) double sum[chunk_size];
-                                for (std::size_t q = begin; q < end; ++q)
-                                  {
-                                    const std::size_t s0 = chunks[q].first_slot;
-                                    const unsigned int len = chunks[q].length;
-                                    const double      *ci  = c + s0;
-                                    const auto &offset = *row_offsets[chunk_row[q]];
-                                    const auto &weight = *row_mu[chunk_row[q]];
-                                    for (unsigned int l = 0; l < len; ++l)
-                                      sum[l] = 0;
-                                    for (std::size_t k = 0; k < weight.size(); ++k)
-                                      {
-                                        const double  mu = weight[k];
-                                        const double *cj = ci + offset[k];
+      layout.for_chunk_ranges(
+        chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double sum[chunk_size];
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const std::size_t  s0     = chunks[q].first_slot;
+              const unsigned int len    = chunks[q].length;
+              const double      *ci     = c + s0;
+              const auto        &offset = *row_offsets[chunk_row[q]];
+              const auto        &weight = *row_mu[chunk_row[q]];
+              for (unsigned int l = 0; l < len; ++l)
+                sum[l] = 0;
+              for (std::size_t k = 0; k < weight.size(); ++k)
+                {
+                  const double  mu = weight[k];
+                  const double *cj = ci + offset[k];
 #pragma omp simd
-                                        for (unsigned int l = 0; l < len; ++l)
-                                          sum[l] += mu * (cj[l] - ci[l]);
-                                      }
-                                    for (unsigned int l = 0; l < len; ++l)
-                                      r_slot[s0 + l] = chunk_factor[q] * sum[l];
-                                  }
-                              });
+                  for (unsigned int l = 0; l < len; ++l)
+                    sum[l] += mu * (cj[l] - ci[l]);
+                }
+              for (unsigned int l = 0; l < len; ++l)
+                r_slot[s0 + l] = chunk_factor[q] * sum[l];
+            }
+        });
 
       // Nodes with lists.
       const auto &list_nodes = work().list_nodes;

@@ -305,7 +305,7 @@ namespace PeriDEAL
       // and conductances, or the collocation row's (use_collocation()),
       // its sum and the sum of magnitudes (for Gershgorin's bound).
       bool                        collocation = false, bulk_row = false;
-      double                      symbol      = 0;
+      double                      symbol = 0;
       std::vector<std::ptrdiff_t> bulk_offset;
       std::vector<double>         bulk_mu;
       double                      bulk_sum = 0, bulk_abs_sum = 0;
@@ -323,7 +323,7 @@ namespace PeriDEAL
       // the shared standard stencil, 1: the bulk collocation row).
       std::vector<double>        chunk_factor;
       std::vector<unsigned char> chunk_row;
-      std::vector<std::size_t> zero_slots;
+      std::vector<std::size_t>   zero_slots;
       // Owned nodes off the shared stencil's neighbourhood (a stored list,
       // or any node off a lattice): the slot and conductance of each bond,
       // in bond order, computed once, so that re-sorting after phase

@@ -373,10 +373,10 @@ namespace PeriDEAL
       std::uint64_t step_number = 0, n_steps = 0;
       unsigned int  last_iterations = 0, total_iterations = 0;
       double        last_progress = 0, next_output_time = 0, loop_start = 0;
-      std::vector<std::string>                    model_columns;
+      std::vector<std::string> model_columns;
       /// 'Quadrature/Scheme = hybrid': the standard nodes (all processes)
       /// go into the history and the progress line.
-      bool hybrid = false;
+      bool                                        hybrid = false;
       std::vector<std::vector<double>>            history;
       std::vector<std::pair<double, std::string>> records;
     };

@@ -62,9 +62,9 @@ namespace PeriDEAL
           // With the model's phases (the interface nodes are standard).
           const std::uint64_t n_total = simulator.get_summary().n_nodes;
           const std::uint64_t n_standard =
-            n_total - Utilities::MPI::sum(std::uint64_t(
-                                            op.n_collocation_nodes_now()),
-                                          simulator.get_communicator());
+            n_total -
+            Utilities::MPI::sum(std::uint64_t(op.n_collocation_nodes_now()),
+                                simulator.get_communicator());
           simulator.get_pcout()
             << "           hybrid: " << n_standard << " of " << n_total
             << " nodes standard (" << std::fixed << std::setprecision(1)
@@ -175,7 +175,8 @@ namespace PeriDEAL
           std::vector<bool> standard(nodes.n_owned(), false);
           if constexpr (dim > 1)
             {
-              const std::vector<bool> region = hybrid_standard_region(simulator);
+              const std::vector<bool> region =
+                hybrid_standard_region(simulator);
               for (unsigned int i = 0; i < nodes.n_owned(); ++i)
                 standard[i] = region[i];
             }
