@@ -206,20 +206,20 @@ namespace PeriDEAL
           // With rows, Gershgorin's bound must hold whatever the nodes
           // take later (a node switches between its row and its bonds as
           // interfaces come and go): both count.
-          if (!collocation)
-            ;
-          else if (on_stencil)
-            largest_geometric_sum = std::max({largest_geometric_sum,
-                                              stencil_sum,
-                                              bulk_row ? bulk_abs_sum : 0.});
-          else
+          if (collocation)
             {
               double bonds = 0, row = 0;
-              for (std::size_t b = stored_first[i]; b < stored_first[i + 1];
-                   ++b)
-                bonds += std::abs(stored_bonds[b].mu);
-              for (std::size_t b = row_first[i]; b < row_first[i + 1]; ++b)
-                row += std::abs(row_entries[b].mu);
+              if (on_stencil)
+                bonds = stencil_sum;
+              else
+                for (std::size_t b = stored_first[i]; b < stored_first[i + 1];
+                     ++b)
+                  bonds += std::abs(stored_bonds[b].mu);
+              if (row_node[i])
+                for (std::size_t b = row_first[i]; b < row_first[i + 1]; ++b)
+                  row += std::abs(row_entries[b].mu);
+              else if (bulk_row && on_stencil)
+                row = bulk_abs_sum;
               largest_geometric_sum =
                 std::max({largest_geometric_sum, bonds, row});
             }
@@ -544,6 +544,11 @@ namespace PeriDEAL
              stored_bonds.capacity() * sizeof(ListBond) +
              row_first.capacity() * sizeof(std::size_t) +
              row_entries.capacity() * sizeof(ListBond) + chunk_row.capacity() +
+             (row_node.capacity() + standard_node.capacity() +
+              node_by_row.capacity()) /
+               8 +
+             bulk_offset.capacity() * sizeof(std::ptrdiff_t) +
+             bulk_mu.capacity() * sizeof(double) +
              zero_slots.capacity() * sizeof(std::size_t) +
              phase_slot.capacity() +
              (c_slot.memory_consumption() + r_slot.memory_consumption());

@@ -334,7 +334,8 @@ namespace PeriDEAL
                                   "the hybrid scheme of the diffusion problem "
                                   "runs in 2D and 3D (its standard region is "
                                   "given by boxes and layers); in 1D use "
-                                  "'Scheme = collocation' or 'standard'"));
+                                  "'Scheme = standard', or 'collocation' "
+                                  "with a model that sets no phases"));
       AssertThrow(hybrid != nullptr || model->supports_collocation(),
                   ExcInvalidInput("Quadrature/Scheme",
                                   scheme,
@@ -342,8 +343,11 @@ namespace PeriDEAL
                                     "' sets phases, and a collocation row "
                                     "has no phase factors: the nodes at an "
                                     "interface need the standard scheme; use "
-                                    "'Scheme = hybrid' (collocation away "
-                                    "from the interfaces) or 'standard'"));
+                                    "'Scheme = standard'" +
+                                    std::string(dim > 1 ?
+                                                  ", or 'hybrid' (collocation "
+                                                  "away from the interfaces)" :
+                                                  "")));
       AssertThrow(hybrid == nullptr || !hybrid->adaptive ||
                     model->changes_phases(),
                   ExcInvalidInput("Quadrature/hybrid/Configuration",
