@@ -15,6 +15,7 @@ the left end of the pre-crack, so that the tip is the crack front):
   quoted in the literature, from the 3D formula with nu = 1/3);
 - peak speed before branching: the tip's x differenced over about 2 us;
 - branch half-angle: from the branching point to the last tip position.
+Runs with the hybrid quadrature (column scheme) are drawn dashed.
 Writes branching.csv and branching.png.
 """
 import csv
@@ -75,8 +76,11 @@ for run in runs:
     tv = t[w:-w]
     before = tv < t[kb]
     peak = v[before].max() if before.any() else float("nan")
+    scheme = run.get("scheme", "standard")
     rows.append(dict(case=run["case"], delta_mm=delta * 1e3, m=run["m"],
                      traction_MPa=float(run["traction"]) / 1e6,
+                     scheme=scheme,
+                     standard_nodes_final=run.get("standard_nodes_final", "all"),
                      nodes=run["nodes"], steps=run["steps"],
                      wall_seconds=run["wall_seconds"],
                      peak_memory_mb=run["peak_memory_mb"],
@@ -91,10 +95,12 @@ for run in runs:
                      branch_half_angle_deg=f"{half_angle:.1f}",
                      final_tip_mm=f"({(x[-1] + 0.05) * 1e3:.1f}, {y[-1] * 1e3:.1f})"))
     label = (f"delta={delta*1e3:g} mm m={run['m']} "
-             f"{float(run['traction'])/1e6:g} MPa")
-    axes[0].plot(t * 1e6, (x + 0.05) * 1e3, label=label)
-    axes[1].plot(tv * 1e6, v / cR, label=label)
-    axes[2].plot(float(run["wall_seconds"]), t_branch * 1e6, "o", label=label)
+             f"{float(run['traction'])/1e6:g} MPa {scheme}")
+    style = "--" if scheme == "hybrid" else "-"
+    axes[0].plot(t * 1e6, (x + 0.05) * 1e3, style, label=label)
+    axes[1].plot(tv * 1e6, v / cR, style, label=label)
+    axes[2].plot(float(run["wall_seconds"]), t_branch * 1e6,
+                 "s" if scheme == "hybrid" else "o", label=label)
 with open(f"{out}/branching.csv", "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
     w.writeheader()

@@ -35,6 +35,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    DiffusionModel<dim>::changes_phases() const
+    {
+      return false;
+    }
+
+
+    template <int dim>
     void
     DiffusionModel<dim>::initialize(const DiffusionSetup<dim> &, VectorType &)
     {}

@@ -8,7 +8,9 @@
 #include <perideal/quadrature/collocation.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 
 namespace PeriDEAL
 {
@@ -55,12 +57,17 @@ namespace PeriDEAL
             }
         }
       collocation = false;
+      bulk_row    = false;
       symbol      = 0;
       row_node.assign(nodes->n_owned(), false);
-      bulk_offset  = layout.stencil_offset;
-      bulk_mu      = stencil_mu;
-      bulk_sum     = stencil_sum;
-      bulk_abs_sum = stencil_sum;
+      row_first.assign(nodes->n_owned() + 1, 0);
+      row_entries.clear();
+      standard_node.assign(nodes->n_owned(), false);
+      keep_interface = false;
+      bulk_offset    = layout.stencil_offset;
+      bulk_mu        = stencil_mu;
+      bulk_sum       = stencil_sum;
+      bulk_abs_sum   = stencil_sum;
       // Bond slots and conductances of the owned nodes that do not have the
       // stencil's neighbourhood (those that do are read off the stencil).
       stored_first.assign(nodes->n_owned() + 1, 0);
@@ -111,10 +118,6 @@ namespace PeriDEAL
       const double                      gate_,
       const std::vector<double>        &rate_)
     {
-      AssertThrow(!collocation,
-                  ExcMessage("DiffusionOperator: phases (corrosion) are not "
-                             "available with the collocation quadrature yet; "
-                             "use 'Quadrature/Scheme = standard'."));
       AssertThrow(phase_of_node.size() == nodes->size() &&
                     factor_.size() == n_phases_ * n_phases_,
                   ExcMessage("set_phases(): one phase per node of the set "
@@ -138,11 +141,27 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    DiffusionOperator<dim>::set_standard_nodes(
+      const std::vector<bool> &standard_of_owned,
+      const bool               keep_interface_nodes)
+    {
+      AssertThrow(standard_of_owned.size() == nodes->n_owned(),
+                  ExcMessage("set_standard_nodes(): one flag per owned node"));
+      standard_node  = standard_of_owned;
+      keep_interface = keep_interface_nodes;
+      build_work_lists();
+    }
+
+
+    template <int dim>
+    void
     DiffusionOperator<dim>::build_work_lists()
     {
       const unsigned int n_owned = nodes->n_owned();
-      // Bulk slots with their phase (runs of one phase only).
-      std::vector<std::pair<std::size_t, unsigned char>> bulk_slots;
+      // Bulk slots with their row (0: the standard stencil, 1: the
+      // collocation row) and phase: runs of one row and one phase only.
+      std::vector<std::tuple<std::size_t, unsigned char, unsigned char>>
+        bulk_slots;
       zero_slots.clear();
       work().list_nodes.clear();
       list_bond_first.assign(1, 0);
@@ -151,43 +170,82 @@ namespace PeriDEAL
       layout.bond_visits    = 0;
       any_special           = false;
       largest_geometric_sum = 0;
+      node_by_row.assign(n_owned, false);
+      n_row_nodes = 0;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
           const unsigned char p = phase_slot[layout.slot[i]];
           const bool          intact =
             bond_state == nullptr || !bond_state->any_broken(i);
-          if (layout.use_lattice && lists->has_full_stencil(i) && intact &&
-              !row_node[i])
+          const bool on_stencil =
+            layout.use_lattice && lists->has_full_stencil(i);
+          // Whether the node's neighbourhood (its bonds) holds one phase
+          // only: a row has no phase factors, so a node at an interface is
+          // evaluated with its bonds.
+          bool uniform = true;
+          if (with_phases)
             {
-              largest_geometric_sum =
-                std::max(largest_geometric_sum, bulk_abs_sum);
-              bool uniform = true;
-              if (with_phases)
+              if (on_stencil)
                 for (std::size_t k = 0;
                      k < layout.stencil_offset.size() && uniform;
                      ++k)
                   uniform =
                     phase_slot[layout.slot[i] + layout.stencil_offset[k]] == p;
-              if (uniform)
+              else
+                for (std::size_t b = stored_first[i];
+                     b < stored_first[i + 1] && uniform;
+                     ++b)
+                  uniform = phase_slot[stored_bonds[b].slot] == p;
+            }
+          if (!uniform && keep_interface)
+            standard_node[i] = true;
+          const bool by_row = uniform && intact && !standard_node[i] &&
+                              (row_node[i] || (bulk_row && on_stencil));
+          node_by_row[i] = by_row;
+          n_row_nodes += by_row;
+          // With rows, Gershgorin's bound must hold whatever the nodes
+          // take later (a node switches between its row and its bonds as
+          // interfaces come and go): both count.
+          if (collocation)
+            {
+              double bonds = 0, row = 0;
+              if (on_stencil)
+                bonds = stencil_sum;
+              else
+                for (std::size_t b = stored_first[i]; b < stored_first[i + 1];
+                     ++b)
+                  bonds += std::abs(stored_bonds[b].mu);
+              if (row_node[i])
+                for (std::size_t b = row_first[i]; b < row_first[i + 1]; ++b)
+                  row += std::abs(row_entries[b].mu);
+              else if (bulk_row && on_stencil)
+                row = bulk_abs_sum;
+              largest_geometric_sum =
+                std::max({largest_geometric_sum, bonds, row});
+            }
+          if (on_stencil && intact && uniform && !(by_row && row_node[i]))
+            {
+              const unsigned char row = by_row ? 1 : 0;
+              const double abs_sum    = row == 1 ? bulk_abs_sum : stencil_sum;
+              largest_geometric_sum = std::max(largest_geometric_sum, abs_sum);
+              if (factor[p * n_phases + p] == 0)
+                zero_slots.push_back(layout.slot[i]);
+              else
                 {
-                  if (factor[p * n_phases + p] == 0)
-                    zero_slots.push_back(layout.slot[i]);
-                  else
-                    {
-                      bulk_slots.emplace_back(layout.slot[i], p);
-                      layout.bond_visits += bulk_mu.size();
-                    }
-                  continue;
+                  bulk_slots.emplace_back(layout.slot[i], row, p);
+                  layout.bond_visits +=
+                    row == 1 ? bulk_mu.size() : stencil_mu.size();
                 }
+              continue;
             }
           double     sum = 0, geometric = 0;
-          const auto add = [&](const unsigned int k,
+          const auto add = [&](const bool         bond,
+                               const unsigned int k,
                                const std::size_t  slot_j,
                                const double       mu) {
             // A collocation row's entries are not bonds (its node has
             // none broken), and its weights may be negative.
-            if (!row_node[i] && bond_state != nullptr &&
-                bond_state->is_broken(i, k))
+            if (bond && bond_state != nullptr && bond_state->is_broken(i, k))
               return;
             geometric += std::abs(mu);
             const unsigned char q = phase_slot[slot_j];
@@ -204,12 +262,19 @@ namespace PeriDEAL
               {static_cast<unsigned int>(slot_j), gated, f * mu, r * mu});
             sum += f * mu;
           };
-          if (layout.use_lattice && lists->has_full_stencil(i) && !row_node[i])
+          if (by_row && row_node[i])
+            for (std::size_t b = row_first[i]; b < row_first[i + 1]; ++b)
+              add(false, 0, row_entries[b].slot, row_entries[b].mu);
+          else if (layout.use_lattice && lists->has_full_stencil(i))
             for (unsigned int k = 0; k < stencil_mu.size(); ++k)
-              add(k, layout.slot[i] + layout.stencil_offset[k], stencil_mu[k]);
+              add(true,
+                  k,
+                  layout.slot[i] + layout.stencil_offset[k],
+                  stencil_mu[k]);
           else
             for (std::size_t b = stored_first[i]; b < stored_first[i + 1]; ++b)
-              add(b - stored_first[i],
+              add(true,
+                  b - stored_first[i],
                   stored_bonds[b].slot,
                   stored_bonds[b].mu);
           largest_geometric_sum = std::max(largest_geometric_sum, geometric);
@@ -220,22 +285,32 @@ namespace PeriDEAL
                                 list_bond_first[list_bond_first.size() - 2];
         }
       layout.n_owned_stencil = bulk_slots.size() + zero_slots.size();
+      // Sorted by slot (the tuple's first entry, unique): runs along the
+      // slots, cut where the row or the phase changes.
       std::sort(bulk_slots.begin(), bulk_slots.end());
-      std::vector<std::size_t> sorted_slots;
+      std::vector<std::size_t>   sorted_slots;
+      std::vector<unsigned char> row_of_slot(
+        bulk_slots.empty() ? 0 : std::get<0>(bulk_slots.back()) + 1,
+        0);
       for (const auto &bulk : bulk_slots)
-        sorted_slots.push_back(bulk.first);
-      // Chunks of one phase only, scaled by its factor.
+        {
+          sorted_slots.push_back(std::get<0>(bulk));
+          row_of_slot[std::get<0>(bulk)] = std::get<1>(bulk);
+        }
       LoopLayout<dim>::cut_into_chunks(
         sorted_slots,
         [&](const Chunk &chunk, const std::size_t s) {
-          return phase_slot[chunk.first_slot] == phase_slot[s];
+          return phase_slot[chunk.first_slot] == phase_slot[s] &&
+                 row_of_slot[chunk.first_slot] == row_of_slot[s];
         },
         work().chunks);
       chunk_factor.clear();
+      chunk_row.clear();
       for (const Chunk &chunk : work().chunks)
         {
           const unsigned char p = phase_slot[chunk.first_slot];
           chunk_factor.push_back(factor[p * n_phases + p]);
+          chunk_row.push_back(row_of_slot[chunk.first_slot]);
         }
     }
 
@@ -273,36 +348,41 @@ namespace PeriDEAL
                                   VectorType       &result) const
     {
       copy_in(concentration);
-      const double     *c         = c_slot.data();
-      const std::size_t n_offsets = bulk_mu.size();
+      const double *c = c_slot.data();
 
       // The uniform bulk: sum_k mu_k (c_{s+o_k} - c_s), vectorised over a
       // run of consecutive slots, offsets outside (the shared stencil's
-      // conductances, or the collocation row's weights).
+      // conductances, or the collocation row's weights: the chunk's row).
+      const std::array<const std::vector<std::ptrdiff_t> *, 2> row_offsets = {
+        {&layout.stencil_offset, &bulk_offset}};
+      const std::array<const std::vector<double> *, 2> row_mu = {
+        {&stencil_mu, &bulk_mu}};
       const auto &chunks = work().chunks;
-      layout.for_chunk_ranges(chunks.size(),
-                              [&](const std::size_t begin,
-                                  const std::size_t end) {
-                                alignas(64) double sum[chunk_size];
-                                for (std::size_t q = begin; q < end; ++q)
-                                  {
-                                    const std::size_t s0 = chunks[q].first_slot;
-                                    const unsigned int len = chunks[q].length;
-                                    const double      *ci  = c + s0;
-                                    for (unsigned int l = 0; l < len; ++l)
-                                      sum[l] = 0;
-                                    for (std::size_t k = 0; k < n_offsets; ++k)
-                                      {
-                                        const double  mu = bulk_mu[k];
-                                        const double *cj = ci + bulk_offset[k];
+      layout.for_chunk_ranges(
+        chunks.size(),
+        [&](const std::size_t begin, const std::size_t end) {
+          alignas(64) double sum[chunk_size];
+          for (std::size_t q = begin; q < end; ++q)
+            {
+              const std::size_t  s0     = chunks[q].first_slot;
+              const unsigned int len    = chunks[q].length;
+              const double      *ci     = c + s0;
+              const auto        &offset = *row_offsets[chunk_row[q]];
+              const auto        &weight = *row_mu[chunk_row[q]];
+              for (unsigned int l = 0; l < len; ++l)
+                sum[l] = 0;
+              for (std::size_t k = 0; k < weight.size(); ++k)
+                {
+                  const double  mu = weight[k];
+                  const double *cj = ci + offset[k];
 #pragma omp simd
-                                        for (unsigned int l = 0; l < len; ++l)
-                                          sum[l] += mu * (cj[l] - ci[l]);
-                                      }
-                                    for (unsigned int l = 0; l < len; ++l)
-                                      r_slot[s0 + l] = chunk_factor[q] * sum[l];
-                                  }
-                              });
+                  for (unsigned int l = 0; l < len; ++l)
+                    sum[l] += mu * (cj[l] - ci[l]);
+                }
+              for (unsigned int l = 0; l < len; ++l)
+                r_slot[s0 + l] = chunk_factor[q] * sum[l];
+            }
+        });
 
       // Nodes with lists.
       const auto &list_nodes = work().list_nodes;
@@ -355,7 +435,8 @@ namespace PeriDEAL
         {
           const unsigned char p = phase_slot[layout.slot[i]];
           sums.local_element(layout.vector_index[i]) =
-            bulk_sum * factor[p * n_phases + p];
+            (node_by_row[i] ? bulk_sum : stencil_sum) *
+            factor[p * n_phases + p];
         }
       for (std::size_t q = 0; q < work().list_nodes.size(); ++q)
         sums.local_element(layout.vector_index[work().list_nodes[q]]) =
@@ -461,6 +542,13 @@ namespace PeriDEAL
              list_sum.capacity() * sizeof(double) +
              stored_first.capacity() * sizeof(std::size_t) +
              stored_bonds.capacity() * sizeof(ListBond) +
+             row_first.capacity() * sizeof(std::size_t) +
+             row_entries.capacity() * sizeof(ListBond) + chunk_row.capacity() +
+             (row_node.capacity() + standard_node.capacity() +
+              node_by_row.capacity()) /
+               8 +
+             bulk_offset.capacity() * sizeof(std::ptrdiff_t) +
+             bulk_mu.capacity() * sizeof(double) +
              zero_slots.capacity() * sizeof(std::size_t) +
              phase_slot.capacity() +
              (c_slot.memory_consumption() + r_slot.memory_consumption());
@@ -570,6 +658,7 @@ namespace PeriDEAL
                                                             dim == 3 ? 12 : 40);
       }
       collocation = true;
+      bulk_row    = true;
       bulk_offset.clear();
       bulk_mu.clear();
       bulk_sum     = 0;
@@ -620,11 +709,12 @@ namespace PeriDEAL
         {
           const unsigned int n_owned = nodes->n_owned();
           const double       horizon = kernel->get_horizon();
-          // Nodes with a broken (insulating) bond keep their bonds.
-          std::vector<bool> standard(n_owned, false);
+          // Nodes with a broken (insulating) bond keep their bonds, and so
+          // do the hybrid scheme's standard nodes.
+          std::vector<bool> standard = standard_node;
           if (bond_state != nullptr)
             for (unsigned int i = 0; i < n_owned; ++i)
-              standard[i] = bond_state->any_broken(i);
+              standard[i] = standard[i] || bond_state->any_broken(i);
           // Rows per node take the stabilised form for order 2 as well
           // (doc/collocation.md Sect. 7.2). A bad order-4 cloud takes an
           // order-2 row ('fall back').
@@ -665,27 +755,22 @@ namespace PeriDEAL
               },
               fits);
 
-          // The rows replace the stored bonds of their nodes.
-          std::vector<std::size_t> first(1, 0);
-          std::vector<ListBond>    bonds;
+          // The rows beside the stored bonds (a node at a phase interface
+          // goes back to its bonds).
+          row_first.assign(1, 0);
+          row_entries.clear();
           for (unsigned int i = 0; i < n_owned; ++i)
             {
               row_node[i] = fits.has_row[i];
               if (fits.has_row[i])
                 for (unsigned int k = 0; k < fits.neighbors[i].size(); ++k)
-                  bonds.push_back({static_cast<unsigned int>(
-                                     layout.slot[fits.neighbors[i][k]]),
-                                   0,
-                                   fits.weights[i][k],
-                                   0.});
-              else
-                bonds.insert(bonds.end(),
-                             stored_bonds.begin() + stored_first[i],
-                             stored_bonds.begin() + stored_first[i + 1]);
-              first.push_back(bonds.size());
+                  row_entries.push_back({static_cast<unsigned int>(
+                                           layout.slot[fits.neighbors[i][k]]),
+                                         0,
+                                         fits.weights[i][k],
+                                         0.});
+              row_first.push_back(row_entries.size());
             }
-          stored_first.swap(first);
-          stored_bonds.swap(bonds);
           collocation = report.n_collocation_nodes > 0;
           build_work_lists();
           return report;

@@ -174,8 +174,9 @@ namespace PeriDEAL
           "inside the body and its layers; the others standard; quasi-static "
           "and diffusion) or 'hybrid' (collocation outside a standard region "
           "that is fixed or grows where bonds near failure, subsection "
-          "'hybrid'; explicit dynamics, and quasi-static with "
-          "'Configuration = fixed'). "
+          "'hybrid'; explicit dynamics, quasi-static with 'Configuration = "
+          "fixed', and diffusion in 2D and 3D, where the nodes at a phase "
+          "interface (corrosion) are standard). "
           "Collocation gives a non-symmetric operator: use GMRES or "
           "BiCGStab.");
         Quadrature::QuadratureSchemeRegistry<dim>::declare_parameters(prm);
@@ -393,8 +394,8 @@ namespace PeriDEAL
                     "the problem type '" + problem_name +
                       "' does not support this quadrature scheme yet "
                       "('collocation': quasi-static and diffusion; 'hybrid': "
-                      "explicit dynamics, and quasi-static with a fixed "
-                      "standard region); use 'Scheme = standard'" +
+                      "explicit dynamics, diffusion, and quasi-static with "
+                      "a fixed standard region); use 'Scheme = standard'" +
                       std::string(problem->supports_hybrid() ?
                                     ", or 'hybrid' (collocation nodes that "
                                     "switch to standard where bonds near "

@@ -178,8 +178,27 @@ group_collocation() {
     "Invalid value 'all orders' for the parameter 'Quadrature/collocation/Stabilisation': in 1D the stabilised order-2 row has growing modes"
   base_prm=corrosion.prm
   expect_error "$col" \
-    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the diffusion model 'corrosion' does not run with the collocation quadrature yet"
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the diffusion model 'corrosion' sets phases, and a collocation row has no phase factors"
+  # The hybrid scheme (doc/collocation.md, "Hybrid diffusion"): adaptive
+  # with corrosion, fixed with every model; adaptive switches nothing
+  # without phase changes, and 'Critical stretch fraction' has no effect.
+  hyb='s/set Problem type = diffusion/set Problem type = diffusion\nsubsection Quadrature\n  set Scheme = hybrid\nend/'
+  sed "$hyb" corrosion.prm > corrosion_hybrid.prm
+  expect_valid 1 corrosion_hybrid.prm "corrosion with the adaptive hybrid" out/solution.pvd out/history.csv
+  rm -rf out
+  expect_error "$hyb; s/  set Scheme = hybrid/  set Scheme = hybrid\n  subsection hybrid\n    set Critical stretch fraction = 0.5\n  end/" \
+    "Invalid value '0.5' for the parameter 'Quadrature/hybrid/Critical stretch fraction': this entry has no effect here: the diffusion problem has no bond stretch"
   base_prm=base.prm
+  fixed="s/  set Scheme = hybrid/  set Scheme = hybrid\n  subsection hybrid\n    set Configuration = fixed\n    set Standard boxes = 0.3, 0.1, 0.6, 0.4\n  end/"
+  sed "$hyb; $fixed" base.prm > hybrid_fixed.prm
+  expect_valid 1 hybrid_fixed.prm "plain diffusion with the fixed hybrid" out/solution.pvd out/history.csv
+  rm -rf out
+  expect_error "$hyb" \
+    "Invalid value 'adaptive' for the parameter 'Quadrature/hybrid/Configuration': the diffusion model 'none' changes no phases"
+  expect_error "$hyb; $fixed; s/set Dimension = 2/set Dimension = 1/; s/set Lower corner = 0, 0/set Lower corner = 0/; s/set Upper corner = 1, 0.5/set Upper corner = 1/; s/set Subdivisions = 20, 10/set Subdivisions = 20/; s/    set Standard boxes = 0.3, 0.1, 0.6, 0.4//" \
+    "Invalid value 'hybrid' for the parameter 'Quadrature/Scheme': the hybrid scheme of the diffusion problem runs in 2D and 3D"
+  expect_error "$hyb; s/  set Scheme = hybrid/  set Scheme = hybrid\n  subsection hybrid\n    set Configuration = fixed\n    set Standard boxes = 2, 2, 3, 3\n  end/" \
+    "Invalid value '2, 2, 3, 3' for the parameter 'Quadrature/hybrid/Standard boxes'"
   # Irregular nodes: both schemes run on them (collocation with a row per
   # node).
   sed "s/  set Subdivisions = 20, 10/  set Subdivisions = 20, 10\n  set Node perturbation = 0.35/" base.prm > perturbed.prm

@@ -263,7 +263,7 @@ group_collocation() {
   expect_error "$bb; $(col '' '\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = none\nend\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend')" \
     "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the collocation rows are built for the body's own nodes"
   expect_error "$bb; $(col '' '\nset Problem type = explicit dynamics')" \
-    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support this quadrature scheme yet ('collocation': quasi-static and diffusion; 'hybrid': explicit dynamics, and quasi-static with a fixed standard region); use 'Scheme = standard', or 'hybrid'"
+    "Invalid value 'collocation' for the parameter 'Quadrature/Scheme': the problem type 'explicit dynamics' does not support this quadrature scheme yet ('collocation': quasi-static and diffusion; 'hybrid': explicit dynamics, diffusion, and quasi-static with a fixed standard region); use 'Scheme = standard', or 'hybrid'"
   # A static solve breaks no bonds: the adaptive switch would never fire.
   expect_error "$bb; $(col '' "$gmres"); s/set Scheme = collocation/set Scheme = hybrid/" \
     "Invalid value 'adaptive' for the parameter 'Quadrature/hybrid/Configuration': a quasi-static solve breaks no bonds, so no node would ever switch"

@@ -80,6 +80,13 @@ namespace PeriDEAL
         return false;
       }
 
+      /// True: metal nodes dissolve into electrolyte.
+      bool
+      changes_phases() const override
+      {
+        return true;
+      }
+
       void
       initialize(const DiffusionSetup<dim> &setup, VectorType &c) override;
 

@@ -99,10 +99,22 @@ namespace PeriDEAL
       /**
        * Whether the model runs with the collocation quadrature
        * ('Quadrature/Scheme = collocation'): a model that sets phases on
-       * the operator (corrosion) does not yet. Default: false.
+       * the operator (corrosion) needs 'hybrid', whose nodes at an
+       * interface keep their bonds. Default: false.
        */
       virtual bool
       supports_collocation() const;
+
+      /**
+       * Whether the model changes the phases of nodes during the run
+       * (corrosion: metal dissolves): then the adaptive hybrid scheme
+       * ('Quadrature/hybrid/Configuration = adaptive') switches the nodes
+       * an interface reaches to the standard scheme; without, it would
+       * switch none. The hybrid scheme runs with every model (a node at a
+       * phase interface keeps its bonds). Default: false.
+       */
+      virtual bool
+      changes_phases() const;
 
       /**
        * Set up the model once the operator and the initial concentration

@@ -99,12 +99,43 @@ namespace PeriDEAL
       CollocationReport
       use_collocation_per_node(const Quadrature::CollocationSettings &settings);
 
+      /**
+       * The hybrid scheme (doc/collocation.md Sect. 11.1, "Hybrid
+       * diffusion"): the owned nodes flagged in @p standard_of_owned (one
+       * flag per owned node: the fixed standard region) keep the standard
+       * scheme for good, whatever rows use_collocation() or
+       * use_collocation_per_node() give. Call before them (the rows per
+       * node are not fitted for these nodes). Independently of this, a
+       * node whose neighbourhood holds more than one phase (set_phases())
+       * is always evaluated with its bonds, since a row has no phase
+       * factors; with @p keep_interface_nodes such a node stays standard
+       * for good (the adaptive hybrid: never switch back), otherwise it
+       * returns to its row once its neighbourhood is of one phase again.
+       */
+      void
+      set_standard_nodes(const std::vector<bool> &standard_of_owned,
+                         const bool               keep_interface_nodes);
+
       /// Whether the bulk or single nodes use collocation rows
       /// (use_collocation(), use_collocation_per_node()).
       bool
       uses_collocation() const
       {
         return collocation;
+      }
+
+      /// Whether owned node @p i is evaluated with a collocation row now.
+      bool
+      is_collocation_node(const unsigned int i) const
+      {
+        return node_by_row[i];
+      }
+
+      /// The owned nodes evaluated with a collocation row now.
+      unsigned int
+      n_collocation_nodes_now() const
+      {
+        return n_row_nodes;
       }
 
       /// The largest eigenvalue of the bulk collocation row's Fourier
@@ -273,8 +304,8 @@ namespace PeriDEAL
       // The bulk row of the vectorised loop: the shared stencil's offsets
       // and conductances, or the collocation row's (use_collocation()),
       // its sum and the sum of magnitudes (for Gershgorin's bound).
-      bool                        collocation = false;
-      double                      symbol      = 0;
+      bool                        collocation = false, bulk_row = false;
+      double                      symbol = 0;
       std::vector<std::ptrdiff_t> bulk_offset;
       std::vector<double>         bulk_mu;
       double                      bulk_sum = 0, bulk_abs_sum = 0;
@@ -288,18 +319,31 @@ namespace PeriDEAL
       bool                       with_phases = false, any_special = false;
       double                     largest_geometric_sum = 0;
 
-      // The phase factor of each chunk of work().chunks.
-      std::vector<double>      chunk_factor;
-      std::vector<std::size_t> zero_slots;
+      // The phase factor of each chunk of work().chunks, and its row (0:
+      // the shared standard stencil, 1: the bulk collocation row).
+      std::vector<double>        chunk_factor;
+      std::vector<unsigned char> chunk_row;
+      std::vector<std::size_t>   zero_slots;
       // Owned nodes off the shared stencil's neighbourhood (a stored list,
       // or any node off a lattice): the slot and conductance of each bond,
       // in bond order, computed once, so that re-sorting after phase
       // changes or broken bonds evaluates no kernel and looks nothing up.
       std::vector<std::size_t> stored_first; // per owned node, size + 1
       std::vector<ListBond>    stored_bonds;
-      // Per owned node: whether its stored bonds are a collocation row of
-      // its own (use_collocation_per_node()), not bonds.
-      std::vector<bool> row_node;
+      // Per owned node: whether it has a collocation row of its own
+      // (use_collocation_per_node()): its entries are
+      // [row_first[i], row_first[i + 1]) of row_entries (slot, weight).
+      std::vector<bool>        row_node;
+      std::vector<std::size_t> row_first;
+      std::vector<ListBond>    row_entries;
+      // Hybrid: owned nodes that keep the standard scheme (the fixed
+      // region, and with keep_interface the nodes an interface reached).
+      std::vector<bool> standard_node;
+      bool              keep_interface = false;
+      // Per owned node: whether it is evaluated with a row now (bulk or
+      // its own), and how many are.
+      std::vector<bool> node_by_row;
+      unsigned int      n_row_nodes = 0;
       // The bonds of the q-th list node of work() (in bond order):
       // [list_bond_first[q], list_bond_first[q + 1]) of list_bonds.
       std::vector<std::size_t> list_bond_first;

@@ -113,6 +113,15 @@ namespace PeriDEAL
         return true;
       }
 
+      /// True: 'Quadrature/Scheme = hybrid' (2D and 3D): collocation rows
+      /// outside the standard region; nodes at a phase interface
+      /// (corrosion) are standard (doc/collocation.md, "Hybrid diffusion").
+      bool
+      supports_hybrid() const override
+      {
+        return true;
+      }
+
       void
       run(Simulator<dim> &simulator) override;
 
@@ -364,7 +373,10 @@ namespace PeriDEAL
       std::uint64_t step_number = 0, n_steps = 0;
       unsigned int  last_iterations = 0, total_iterations = 0;
       double        last_progress = 0, next_output_time = 0, loop_start = 0;
-      std::vector<std::string>                    model_columns;
+      std::vector<std::string> model_columns;
+      /// 'Quadrature/Scheme = hybrid': the standard nodes (all processes)
+      /// go into the history and the progress line.
+      bool                                        hybrid = false;
       std::vector<std::vector<double>>            history;
       std::vector<std::pair<double, std::string>> records;
     };

@@ -15,6 +15,7 @@
 
 #include <perideal/base/exceptions.h>
 #include <perideal/problems/diffusion.h>
+#include <perideal/problems/node_region.h>
 
 #include <algorithm>
 #include <array>
@@ -56,6 +57,25 @@ namespace PeriDEAL
         apply_layer_values(0, c);
         finite_check.throw_pending(simulator.get_communicator());
       }
+      if (hybrid)
+        {
+          // With the model's phases (the interface nodes are standard).
+          const std::uint64_t n_total = simulator.get_summary().n_nodes;
+          const std::uint64_t n_standard =
+            n_total -
+            Utilities::MPI::sum(std::uint64_t(op.n_collocation_nodes_now()),
+                                simulator.get_communicator());
+          simulator.get_pcout()
+            << "           hybrid: " << n_standard << " of " << n_total
+            << " nodes standard (" << std::fixed << std::setprecision(1)
+            << 100. * n_standard / std::max<std::uint64_t>(n_total, 1)
+            << " %: the standard region, cut balls, phase interfaces"
+            << (simulator.get_quadrature_scheme().hybrid()->adaptive ?
+                  ", and for good every node an interface reaches)" :
+                  "; a node returns to its row once an interface has "
+                  "passed)")
+            << std::defaultfloat << std::endl;
+        }
       if (!integrator->takes_time_steps())
         {
           TimerOutput::Scope scope(simulator.get_timer(), "steady solve");
@@ -145,6 +165,23 @@ namespace PeriDEAL
         }
       bond_state.reinit(nodes, simulator.get_neighbor_lists());
       op.reinit(nodes, simulator.get_neighbor_lists(), kernel, &bond_state);
+      if (const auto *hybrid_settings =
+            simulator.get_quadrature_scheme().hybrid())
+        {
+          // The fixed standard region (check_input() refuses 1D). Nodes at
+          // a phase interface are standard anyway (the operator finds
+          // them; with 'adaptive' for good).
+          hybrid = true;
+          std::vector<bool> standard(nodes.n_owned(), false);
+          if constexpr (dim > 1)
+            {
+              const std::vector<bool> region =
+                hybrid_standard_region(simulator);
+              for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+                standard[i] = region[i];
+            }
+          op.set_standard_nodes(standard, hybrid_settings->adaptive);
+        }
       if (const auto *settings =
             simulator.get_quadrature_scheme().collocation())
         {

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iomanip>
 #include <limits>
@@ -70,6 +71,10 @@ namespace PeriDEAL
                                      std::sqrt(error2));
           row.push_back(max_error);
         }
+      if (hybrid)
+        row.push_back(double(Utilities::MPI::sum(
+          std::uint64_t(nodes->n_owned() - op.n_collocation_nodes_now()),
+          comm)));
       const auto values = model->history_values(model_setup(), c);
       row.insert(row.end(), values.begin(), values.end());
       history.push_back(row);
@@ -97,6 +102,8 @@ namespace PeriDEAL
         out << ", " << last_iterations << " iterations";
       if (compare)
         out << ", relative l2 error " << row[6] << ", max error " << row[7];
+      if (hybrid)
+        out << ", standard nodes " << std::uint64_t(row[compare ? 8 : 6]);
       if (!model_columns.empty())
         out << ", "
             << model->progress_text(
@@ -125,7 +132,7 @@ namespace PeriDEAL
       if (output.enabled())
         {
           IO::NodeField concentration{"concentration", {}}, error{"error", {}},
-            rank{"mpi_rank", {}};
+            rank{"mpi_rank", {}}, scheme{"scheme", {}};
           if (compare)
             analytical->set_time(time);
           const double this_rank = Utilities::MPI::this_mpi_process(comm);
@@ -137,10 +144,15 @@ namespace PeriDEAL
                 error.values.push_back(value -
                                        analytical->value((*nodes)[i].location));
               rank.values.push_back(this_rank);
+              // As in explicit dynamics: 0 standard, 1 collocation.
+              if (hybrid)
+                scheme.values.push_back(op.is_collocation_node(i) ? 1. : 0.);
             }
           std::vector<IO::NodeField> fields = {concentration, rank};
           if (compare)
             fields.push_back(error);
+          if (hybrid)
+            fields.push_back(scheme);
           for (auto &field : model->node_fields(model_setup(), c))
             fields.push_back(std::move(field));
           const std::string record = output.write(simulator.get_dof_handler(),
@@ -162,6 +174,8 @@ namespace PeriDEAL
                 out << "time,step,total,minimum,maximum,iterations";
                 if (compare)
                   out << ",relative_l2_error,max_error";
+                if (hybrid)
+                  out << ",standard_nodes";
                 for (const auto &name : model_columns)
                   out << ',' << name;
                 out << '\n' << std::setprecision(12);

@@ -327,15 +327,37 @@ namespace PeriDEAL
                     "nodes (a row per node) are built in 2D and 3D; in 1D "
                     "set 0, or 'Quadrature/Scheme = standard' (which runs on "
                     "perturbed nodes)"));
-      AssertThrow(model->supports_collocation(),
+      const auto *hybrid = simulator.get_quadrature_scheme().hybrid();
+      AssertThrow(hybrid == nullptr || dim > 1,
+                  ExcInvalidInput("Quadrature/Scheme",
+                                  scheme,
+                                  "the hybrid scheme of the diffusion problem "
+                                  "runs in 2D and 3D (its standard region is "
+                                  "given by boxes and layers); in 1D use "
+                                  "'Scheme = standard', or 'collocation' "
+                                  "with a model that sets no phases"));
+      AssertThrow(hybrid != nullptr || model->supports_collocation(),
                   ExcInvalidInput("Quadrature/Scheme",
                                   scheme,
                                   "the diffusion model '" + model_name +
-                                    "' does not run with the collocation "
-                                    "quadrature yet (its phases need the "
-                                    "standard scheme); use 'Scheme = "
-                                    "standard' or 'diffusion/Model = "
-                                    "plain'"));
+                                    "' sets phases, and a collocation row "
+                                    "has no phase factors: the nodes at an "
+                                    "interface need the standard scheme; use "
+                                    "'Scheme = standard'" +
+                                    std::string(dim > 1 ?
+                                                  ", or 'hybrid' (collocation "
+                                                  "away from the interfaces)" :
+                                                  "")));
+      AssertThrow(hybrid == nullptr || !hybrid->adaptive ||
+                    model->changes_phases(),
+                  ExcInvalidInput("Quadrature/hybrid/Configuration",
+                                  "adaptive",
+                                  "the diffusion model '" + model_name +
+                                    "' changes no phases, so no node would "
+                                    "ever switch to the standard scheme; set "
+                                    "'Configuration = fixed' (the standard "
+                                    "boxes and layers, and the nodes whose "
+                                    "ball is cut, are standard)"));
       AssertThrow(!kernel.calibrates_on_lattice(),
                   ExcInvalidInput(section + "/Micro-diffusivity calibration",
                                   "lattice",
@@ -348,7 +370,7 @@ namespace PeriDEAL
 
     template <int dim>
     std::vector<UnusedEntry>
-    Diffusion<dim>::unused_entries(const Simulator<dim> &) const
+    Diffusion<dim>::unused_entries(const Simulator<dim> &simulator) const
     {
       const std::string        prefix = section + "/";
       std::vector<UnusedEntry> unused = {
@@ -384,6 +406,15 @@ namespace PeriDEAL
             "to true to compare, or remove the entry");
       for (const auto &rule : model->unused_entries())
         unused.push_back({prefix + rule.pattern, rule.why});
+      const auto *hybrid = simulator.get_quadrature_scheme().hybrid();
+      if (hybrid != nullptr && hybrid->adaptive)
+        for (const char *entry :
+             {"Critical stretch fraction", "Critical bond detection"})
+          unused.push_back(
+            {std::string("Quadrature/hybrid/") + entry,
+             "the diffusion problem has no bond stretch: its adaptive "
+             "hybrid switches the nodes a phase interface reaches, at the "
+             "step the phase changes; remove the entry"});
       return unused;
     }
 
