@@ -155,6 +155,31 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    DiffusionOperator<dim>::update_switch_bound()
+    {
+      switch_bound = 0;
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          const bool on_stencil =
+            layout.use_lattice && lists->has_full_stencil(i);
+          double bonds = 0, row = 0;
+          if (on_stencil)
+            bonds = stencil_sum;
+          else
+            for (std::size_t b = stored_first[i]; b < stored_first[i + 1]; ++b)
+              bonds += std::abs(stored_bonds[b].mu);
+          if (row_node[i])
+            for (std::size_t b = row_first[i]; b < row_first[i + 1]; ++b)
+              row += std::abs(row_entries[b].mu);
+          else if (bulk_row && on_stencil)
+            row = bulk_abs_sum;
+          switch_bound = std::max({switch_bound, bonds, row});
+        }
+    }
+
+
+    template <int dim>
+    void
     DiffusionOperator<dim>::build_work_lists()
     {
       const unsigned int n_owned = nodes->n_owned();
@@ -172,6 +197,11 @@ namespace PeriDEAL
       largest_geometric_sum = 0;
       node_by_row.assign(n_owned, false);
       n_row_nodes = 0;
+      // With rows, Gershgorin's bound must hold whatever the nodes take
+      // later (a node switches between its row and its bonds as interfaces
+      // come and go): the bound of both forms, computed once with the rows.
+      if (collocation)
+        largest_geometric_sum = switch_bound;
       for (unsigned int i = 0; i < n_owned; ++i)
         {
           const unsigned char p = phase_slot[layout.slot[i]];
@@ -203,26 +233,6 @@ namespace PeriDEAL
                               (row_node[i] || (bulk_row && on_stencil));
           node_by_row[i] = by_row;
           n_row_nodes += by_row;
-          // With rows, Gershgorin's bound must hold whatever the nodes
-          // take later (a node switches between its row and its bonds as
-          // interfaces come and go): both count.
-          if (collocation)
-            {
-              double bonds = 0, row = 0;
-              if (on_stencil)
-                bonds = stencil_sum;
-              else
-                for (std::size_t b = stored_first[i]; b < stored_first[i + 1];
-                     ++b)
-                  bonds += std::abs(stored_bonds[b].mu);
-              if (row_node[i])
-                for (std::size_t b = row_first[i]; b < row_first[i + 1]; ++b)
-                  row += std::abs(row_entries[b].mu);
-              else if (bulk_row && on_stencil)
-                row = bulk_abs_sum;
-              largest_geometric_sum =
-                std::max({largest_geometric_sum, bonds, row});
-            }
           if (on_stencil && intact && uniform && !(by_row && row_node[i]))
             {
               const unsigned char row = by_row ? 1 : 0;
@@ -684,6 +694,7 @@ namespace PeriDEAL
                     "non-positive diagonal; doc/collocation.md Sect. 7): "
                     "the operator has growing modes. Use 'Order = 2'" +
                       settings.stabilisation_hint()));
+      update_switch_bound();
       build_work_lists();
       return condition;
     }
@@ -772,6 +783,7 @@ namespace PeriDEAL
               row_first.push_back(row_entries.size());
             }
           collocation = report.n_collocation_nodes > 0;
+          update_switch_bound();
           build_work_lists();
           return report;
         }

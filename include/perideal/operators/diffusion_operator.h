@@ -272,6 +272,11 @@ namespace PeriDEAL
       void
       build_work_lists();
 
+      /// switch_bound from the bonds and rows of every owned node (after
+      /// the rows changed).
+      void
+      update_switch_bound();
+
       /// The work of the one pass.
       typename LoopLayout<dim>::Pass &
       work()
@@ -340,6 +345,10 @@ namespace PeriDEAL
       // region, and with keep_interface the nodes an interface reached).
       std::vector<bool> standard_node;
       bool              keep_interface = false;
+      // With rows: the largest of a node's row and bond sums of |weight|
+      // over the owned nodes, Gershgorin's row bound whatever each node
+      // takes (update_switch_bound()).
+      double switch_bound = 0;
       // Per owned node: whether it is evaluated with a row now (bulk or
       // its own), and how many are.
       std::vector<bool> node_by_row;
