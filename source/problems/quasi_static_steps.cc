@@ -124,9 +124,11 @@ namespace PeriDEAL
               {
                 system->solve_step(context, displacement);
               }
-            catch (const std::exception &e)
+            catch (const ExcNoConvergence &e)
               {
-                return e.what();
+                std::ostringstream message;
+                e.print_info(message);
+                return message.str();
               }
             return "";
           };
