@@ -215,8 +215,8 @@ namespace PeriDEAL
       traction_from_stress = prm.get("Traction given as") == "stress tensor";
       prm.enter_subsection("Body force");
       zero_body_force = true;
-      for (const auto &component : Utilities::split_string_list(
-             prm.get("Function expression"), ';'))
+      for (const auto &component :
+           Utilities::split_string_list(prm.get("Function expression"), ';'))
         {
           double x = 1;
           zero_body_force =
@@ -225,7 +225,7 @@ namespace PeriDEAL
       prm.leave_subsection();
       prm.enter_subsection("Boundary stress");
       {
-        stress_uses_time = uses_time(prm, dim);
+        stress_uses_time             = uses_time(prm, dim);
         const std::string expression = prm.get("Function expression");
         const auto        n_given =
           Utilities::split_string_list(expression, ';').size();

@@ -36,6 +36,81 @@ namespace PeriDEAL
     }
 
 
+    template <int dim>
+    bool
+    DiscreteSystem<dim>::supports_bond_breaking() const
+    {
+      return false;
+    }
+
+
+    // The problem type asks supports_bond_breaking() before it calls any
+    // of the following.
+    template <int dim>
+    std::size_t
+    DiscreteSystem<dim>::setup_failure(const SystemContext<dim> &,
+                                       const std::vector<double> &,
+                                       const CutBonds &)
+    {
+      AssertThrow(false, ExcInternalError());
+      return 0;
+    }
+
+
+    template <int dim>
+    void
+    DiscreteSystem<dim>::solve_step(const SystemContext<dim> &,
+                                    TrilinosWrappers::MPI::Vector &)
+    {
+      AssertThrow(false, ExcInternalError());
+    }
+
+
+    template <int dim>
+    std::size_t
+    DiscreteSystem<dim>::count_critical_bonds(const double)
+    {
+      AssertThrow(false, ExcInternalError());
+      return 0;
+    }
+
+
+    template <int dim>
+    std::size_t
+    DiscreteSystem<dim>::break_critical_bonds(const double)
+    {
+      AssertThrow(false, ExcInternalError());
+      return 0;
+    }
+
+
+    template <int dim>
+    std::vector<double>
+    DiscreteSystem<dim>::damage(const SystemContext<dim> &) const
+    {
+      AssertThrow(false, ExcInternalError());
+      return {};
+    }
+
+
+    template <int dim>
+    unsigned int
+    DiscreteSystem<dim>::n_isolated_nodes() const
+    {
+      return 0;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    DiscreteSystem<dim>::holding_force(const SystemContext<dim> &,
+                                       const std::vector<bool> &) const
+    {
+      AssertThrow(false, ExcInternalError());
+      return {};
+    }
+
+
     template class DiscreteSystem<2>;
     template class DiscreteSystem<3>;
   } // namespace Boundary

@@ -98,7 +98,7 @@ namespace PeriDEAL
       if (context.linear_solver.is_matrix_free())
         solve_matrix_free(context, displacement);
       else
-        solve_assembled(context, displacement);
+        solve_assembled(context, displacement, true);
     }
 
 
@@ -154,6 +154,8 @@ namespace PeriDEAL
                                                    context.nodes,
                                                    context.horizon,
                                                    constraints);
+      if (!critical_stretch.empty())
+        hold_isolated_nodes(context);
       check_rigid_motions(context);
       load.reinit(context.dof_handler.locally_owned_dofs(),
                   context.communicator);
@@ -166,27 +168,113 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    NodalSystem<dim>::assemble_matrix_free_step(
+      const SystemContext<dim> &context)
+    {
+      TimerOutput::Scope scope(context.timer, "assembly");
+      make_constraints_and_load(context);
+      constrained_operator.initialize(bond_operator, constraints);
+      VectorType load_vector;
+      constrained_operator.initialize_dof_vector(load_vector);
+      for (const auto dof : context.dof_handler.locally_owned_dofs())
+        load_vector[dof] = load[dof];
+      constrained_operator.lift(load_vector, step_rhs, step_prescribed);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::prepare_preconditioner(const SystemContext<dim> &context)
+    {
+      if (preconditioner_ready)
+        return;
+      preconditioner_ready = true;
+      constant_modes.clear();
+      if (!context.linear_solver.preconditioner().needs_local_matrix())
+        return;
+      TimerOutput::Scope scope(context.timer, "preconditioner setup");
+      // Nodes perturbed in their cells: the preconditioner's finite
+      // elements live on the cells, whose centres may still form a
+      // lattice.
+      Discretization::Lattice<dim> cells;
+      if (!context.neighbor_lists.lattice().is_uniform())
+        cells.reinit(context.nodes, true);
+      Operators::LocalElasticityOperator<dim>::assemble(
+        context.nodes,
+        context.neighbor_lists.lattice().is_uniform() ?
+          context.neighbor_lists.lattice() :
+          cells,
+        context.model,
+        constraints,
+        local_matrix);
+      DoFTools::extract_constant_modes(context.dof_handler,
+                                       ComponentMask(dim, true),
+                                       constant_modes);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::solve_matrix_free_step(
+      const SystemContext<dim>      &context,
+      TrilinosWrappers::MPI::Vector &displacement)
+    {
+      const IndexSet &owned = context.dof_handler.locally_owned_dofs();
+      VectorType      solution;
+      constrained_operator.initialize_dof_vector(solution);
+      // Warm start from the last solution's free part (prescribed entries
+      // are zero in the lifted system).
+      if (free_solution.size() == solution.size())
+        for (unsigned int k = 0; k < solution.locally_owned_size(); ++k)
+          solution.local_element(k) = constrained_operator.is_prescribed(k) ?
+                                        0. :
+                                        free_solution.local_element(k);
+      {
+        TimerOutput::Scope scope(context.timer, "solve");
+        context.summary.solver =
+          context.linear_solver.solve(constrained_operator,
+                                      solution,
+                                      step_rhs,
+                                      &local_matrix,
+                                      constant_modes);
+      }
+      free_solution = solution;
+      solution += step_prescribed;
+      TrilinosWrappers::MPI::Vector owned_solution(owned, context.communicator);
+      for (const auto dof : owned)
+        owned_solution[dof] = solution[dof];
+      owned_solution.compress(VectorOperation::insert);
+      displacement.reinit(owned,
+                          context.nodes.relevant_dofs(),
+                          context.communicator);
+      displacement = owned_solution;
+    }
+
+
+    template <int dim>
+    void
     NodalSystem<dim>::solve_matrix_free(
       const SystemContext<dim>      &context,
       TrilinosWrappers::MPI::Vector &displacement)
     {
-      using VectorType           = LinearAlgebra::distributed::Vector<double>;
       context.summary.n_unknowns = context.dof_handler.n_dofs();
-      const IndexSet &owned      = context.dof_handler.locally_owned_dofs();
-      VectorType      load_vector, rhs, prescribed, solution;
-      {
-        TimerOutput::Scope scope(context.timer, "assembly");
-        make_constraints_and_load(context);
-        constrained_operator.initialize(bond_operator, constraints);
-        constrained_operator.initialize_dof_vector(load_vector);
-        for (const auto dof : owned)
-          load_vector[dof] = load[dof];
-        constrained_operator.lift(load_vector, rhs, prescribed);
-      }
+      assemble_matrix_free_step(context);
       context.summary.n_constrained_nodes = Utilities::MPI::sum(
         context.boundary_conditions.n_constrained_nodes(context.nodes,
                                                         constraints),
         context.communicator);
+      print_operator(context);
+      prepare_preconditioner(context);
+      solve_matrix_free_step(context, displacement);
+      print_solve(context, "");
+      check_equilibrium(context, displacement);
+    }
+
+
+    template <int dim>
+    void
+    NodalSystem<dim>::print_operator(const SystemContext<dim> &context) const
+    {
       const unsigned int n_stencil =
         Utilities::MPI::sum(bond_operator.n_stencil_nodes(),
                             context.communicator) +
@@ -215,50 +303,6 @@ namespace PeriDEAL
         << visits << " bond visits per application, " << std::setprecision(1)
         << operator_mb << " MB, " << MultithreadInfo::n_threads()
         << " thread(s) per process" << std::defaultfloat << std::endl;
-
-      std::vector<std::vector<bool>> constant_modes;
-      if (context.linear_solver.preconditioner().needs_local_matrix())
-        {
-          TimerOutput::Scope scope(context.timer, "preconditioner setup");
-          // Nodes perturbed in their cells: the preconditioner's finite
-          // elements live on the cells, whose centres may still form a
-          // lattice.
-          Discretization::Lattice<dim> cells;
-          if (!context.neighbor_lists.lattice().is_uniform())
-            cells.reinit(context.nodes, true);
-          Operators::LocalElasticityOperator<dim>::assemble(
-            context.nodes,
-            context.neighbor_lists.lattice().is_uniform() ?
-              context.neighbor_lists.lattice() :
-              cells,
-            context.model,
-            constraints,
-            local_matrix);
-          DoFTools::extract_constant_modes(context.dof_handler,
-                                           ComponentMask(dim, true),
-                                           constant_modes);
-        }
-      constrained_operator.initialize_dof_vector(solution);
-      {
-        TimerOutput::Scope scope(context.timer, "solve");
-        context.summary.solver =
-          context.linear_solver.solve(constrained_operator,
-                                      solution,
-                                      rhs,
-                                      &local_matrix,
-                                      constant_modes);
-      }
-      solution += prescribed;
-      TrilinosWrappers::MPI::Vector owned_solution(owned, context.communicator);
-      for (const auto dof : owned)
-        owned_solution[dof] = solution[dof];
-      owned_solution.compress(VectorOperation::insert);
-      displacement.reinit(owned,
-                          context.nodes.relevant_dofs(),
-                          context.communicator);
-      displacement = owned_solution;
-      print_solve(context, "");
-      check_equilibrium(context, displacement);
     }
 
 
@@ -266,7 +310,8 @@ namespace PeriDEAL
     void
     NodalSystem<dim>::solve_assembled(
       const SystemContext<dim>      &context,
-      TrilinosWrappers::MPI::Vector &displacement)
+      TrilinosWrappers::MPI::Vector &displacement,
+      const bool                     verbose)
     {
       context.summary.n_unknowns = context.dof_handler.n_dofs();
       const IndexSet &owned      = context.dof_handler.locally_owned_dofs();
@@ -282,12 +327,13 @@ namespace PeriDEAL
                                                         constraints),
         context.communicator);
       context.summary.n_nonzeros = system_matrix.n_nonzero_elements();
-      context.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
-                    << context.elapsed()
-                    << " s] assembled: " << context.dof_handler.n_dofs()
-                    << " DoFs, " << context.summary.n_nonzeros << " nonzeros, "
-                    << context.summary.n_constrained_nodes
-                    << " nodes in Dirichlet layers" << std::endl;
+      if (verbose)
+        context.pcout << "[" << std::setw(8) << std::fixed
+                      << std::setprecision(2) << context.elapsed()
+                      << " s] assembled: " << context.dof_handler.n_dofs()
+                      << " DoFs, " << context.summary.n_nonzeros
+                      << " nonzeros, " << context.summary.n_constrained_nodes
+                      << " nodes in Dirichlet layers" << std::endl;
 
       // Symmetry of the system, measured: x^T A y against y^T A x.
       TrilinosWrappers::MPI::Vector x(owned, context.communicator),
@@ -321,8 +367,9 @@ namespace PeriDEAL
       }
       displacement.reinit(owned, relevant, context.communicator);
       displacement = solution;
-      print_solve(context, symmetric ? "" : " (non-symmetric)");
-      check_equilibrium(context, displacement);
+      if (verbose)
+        print_solve(context, symmetric ? "" : " (non-symmetric)");
+      check_equilibrium(context, displacement, verbose);
     }
 
 
@@ -428,12 +475,13 @@ namespace PeriDEAL
     void
     NodalSystem<dim>::check_equilibrium(
       const SystemContext<dim>            &context,
-      const TrilinosWrappers::MPI::Vector &displacement) const
+      const TrilinosWrappers::MPI::Vector &displacement,
+      const bool                           verbose)
     {
       // F_int(u) + F_ext = 0 at every free DoF, with the forces of
       // BondOperator::apply() (not of its assembly).
       const IndexSet &owned = context.dof_handler.locally_owned_dofs();
-      VectorType      u, internal;
+      VectorType     &u = last_displacement, &internal = last_force;
       bond_operator.initialize_dof_vector(u);
       bond_operator.initialize_dof_vector(internal);
       for (const auto dof : owned)
@@ -449,7 +497,8 @@ namespace PeriDEAL
         Utilities::MPI::sum(free_residual2, context.communicator);
       context.summary.equilibrium_residual =
         scale > 0 ? std::sqrt(free_residual2) / scale : 0.;
-      print_equilibrium(context, "matrix-free forces");
+      if (verbose)
+        print_equilibrium(context, "matrix-free forces");
     }
 
 

@@ -151,7 +151,9 @@ namespace PeriDEAL
                         "Bond failure from the critical energy release rate "
                         "G0 (J/m^2): the critical stretch that dissipates G0 "
                         "per unit crack area (bond-based PMB: Silling & "
-                        "Askari 2005, derived for every influence function "
+                        "Askari 2005; LPS: the drop of the model's energy, "
+                        "dilatation included, when the bonds across a plane "
+                        "break; both derived for every influence function "
                         "in doc/explicit-dynamics.md). 0: not used.");
     }
 

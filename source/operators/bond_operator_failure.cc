@@ -115,6 +115,25 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::size_t
+    BondOperator<dim>::count_exceeded_bonds()
+    {
+      std::size_t owned_ends = 0;
+      {
+        std::lock_guard<std::mutex> lock(exceeded_mutex);
+        std::sort(exceeded.begin(), exceeded.end());
+        exceeded.erase(std::unique(exceeded.begin(), exceeded.end()),
+                       exceeded.end());
+        for (const auto &bond : exceeded)
+          if (bond.first < nodes->n_owned())
+            ++owned_ends;
+        exceeded.clear();
+      }
+      return Utilities::MPI::sum(owned_ends, nodes->get_communicator()) / 2;
+    }
+
+
+    template <int dim>
     void
     BondOperator<dim>::update_work_lists(
       const std::vector<unsigned int> &changed)
@@ -192,15 +211,16 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)                              \
-  template void BondOperator<dim>::set_kinematics(             \
-    const bool,                                                \
-    const std::vector<double> &);                              \
-  template void BondOperator<dim>::record_exceeded(            \
-    const std::vector<ExceededBond> &) const;                  \
-  template std::size_t BondOperator<dim>::commit_broken_bonds( \
-    Discretization::BondState<dim> &);                         \
-  template void BondOperator<dim>::update_work_lists(          \
+#define PERIDEAL_INSTANTIATE(dim)                                 \
+  template void BondOperator<dim>::set_kinematics(                \
+    const bool,                                                   \
+    const std::vector<double> &);                                 \
+  template void BondOperator<dim>::record_exceeded(               \
+    const std::vector<ExceededBond> &) const;                     \
+  template std::size_t BondOperator<dim>::commit_broken_bonds(    \
+    Discretization::BondState<dim> &);                            \
+  template std::size_t BondOperator<dim>::count_exceeded_bonds(); \
+  template void        BondOperator<dim>::update_work_lists(      \
     const std::vector<unsigned int> &);
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)

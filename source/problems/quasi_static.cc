@@ -8,6 +8,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/node_region.h>
 #include <perideal/problems/quasi_static.h>
 
@@ -28,16 +29,96 @@ namespace PeriDEAL
     QuasiStatic<dim>::declare_parameters(ParameterHandler &prm)
     {
       prm.declare_entry(
-        "Time",
+        "End time",
         "1",
         Patterns::Double(),
-        "The (pseudo-)time t at which the functions of 'Boundary "
-        "conditions' (Dirichlet displacement, Body force, Traction, "
-        "Boundary stress) and 'Analytical solution' are evaluated: the "
-        "problem is the equilibrium under the loads at this instant. As in "
-        "the static steps of finite-element codes, the default 1 is the end "
-        "of a unit load ramp, so a load 'p*t' acts in full; functions that "
-        "do not use t are the same at any time.");
+        "The (pseudo-)time t at the end of the load path: the functions of "
+        "'Boundary conditions' (Dirichlet displacement, Body force, "
+        "Traction, Boundary stress) and 'Analytical solution' are functions "
+        "of t, and the run goes from t = 0 to this time in 'Load steps' "
+        "steps. With one step and no bond breaking the loads are evaluated "
+        "once, at this time; the default 1 is the end of a unit ramp, so a "
+        "load 'p*t' acts in full.");
+      prm.declare_entry("Load steps",
+                        "1",
+                        Patterns::Integer(),
+                        "The number of load steps from t = 0 to 'End time' "
+                        "(the largest step; the step control may cut it). "
+                        "1 with 'Bond breaking = off': one solve at 'End "
+                        "time'.");
+      prm.declare_entry(
+        "Bond breaking",
+        "off",
+        Patterns::Selection("off|all beyond critical|most critical"),
+        "After the equilibrium of a load step: 'off' breaks nothing; 'all "
+        "beyond critical' breaks every bond whose stretch reached its "
+        "critical stretch (the material model's 'Critical stretch' or "
+        "'Fracture energy'), 'most critical' only those within 0.1 % of the "
+        "largest ratio of stretch to critical stretch; either way the same "
+        "load is solved again until no bond breaks. Pre-cracks and no-fail "
+        "regions as in explicit dynamics.");
+      prm.declare_entry(
+        "Nonlinear solver",
+        "Newton",
+        Patterns::Selection("Newton"),
+        "The solver of each equilibrium. 'Newton': with small-strain "
+        "kinematics the problem with the current bonds is linear, so "
+        "Newton's method is one linear solve ('Linear solver'), "
+        "warm-started from the last step. (Adaptive dynamic relaxation is "
+        "planned, not built.)");
+      prm.declare_entry("Kinematics",
+                        "small strain",
+                        Patterns::Selection("small strain"),
+                        "The bond kinematics: 'small strain' (the bond "
+                        "extension linearised in u). (Finite deformation is "
+                        "planned, not built.)");
+      prm.declare_entry(
+        "Reaction boundary ids",
+        "",
+        Patterns::List(Patterns::Integer(0, 254)),
+        "Boundary ids with Dirichlet layers whose reaction is written to "
+        "'Load-displacement file': the force that holds the layer's "
+        "prescribed nodes, i.e. minus the sum of the body's internal forces "
+        "on them (per unit thickness in 2D). Each id must be one of "
+        "'Boundary conditions/Dirichlet boundary ids'.");
+      prm.declare_entry(
+        "Load-displacement file",
+        "load_displacement.csv",
+        Patterns::FileName(Patterns::FileName::output),
+        "CSV in 'Output/Directory' with one row per load step: "
+        "step,time,reaction_x,reaction_y[,reaction_z],broken_bonds,"
+        "iterations (broken bonds: all broken so far, pre-cracks included; "
+        "iterations: the linear solver's, summed over the step's solves). "
+        "Written when the load is stepped. Empty: none.");
+      prm.declare_entry("Minimum load step",
+                        "0",
+                        Patterns::Double(0),
+                        "The step control does not cut a step below this; "
+                        "0: ('End time' / 'Load steps') / 1024. A solve that "
+                        "fails at the minimum stops the run with the step "
+                        "and the load named.");
+      prm.declare_entry(
+        "Critical stretch tolerance",
+        "0.01",
+        Patterns::Double(0),
+        "A load step is cut (down to 'Minimum load step') while some bond's "
+        "stretch exceeds (1 + this) times its critical stretch at the "
+        "step's equilibrium: the load at which bonds start to break is "
+        "then found to about this relative precision.");
+      prm.declare_entry("Maximum bonds per step",
+                        "0",
+                        Patterns::Integer(0),
+                        "A load step is also cut while more bonds than this "
+                        "are over their critical stretch at its first "
+                        "equilibrium; 0: no limit.");
+      prm.declare_entry("Complete failure fraction",
+                        "0.01",
+                        Patterns::Double(0, 1),
+                        "With bond breaking and 'Reaction boundary ids': "
+                        "the run stops, complete, when the magnitude of the "
+                        "reaction falls below this fraction of its peak "
+                        "after bonds broke. 0: run to 'End time'.");
+      BondFailure<dim>::declare_parameters(prm);
     }
 
 
@@ -45,11 +126,57 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::parse_parameters(ParameterHandler &prm)
     {
-      load_time = prm.get_double("Time");
-      AssertThrow(std::isfinite(load_time),
-                  ExcInvalidInput("quasi-static/Time",
-                                  prm.get("Time"),
-                                  "give a finite time"));
+      end_time = prm.get_double("End time");
+      AssertThrow(std::isfinite(end_time) && end_time > 0,
+                  ExcInvalidInput("quasi-static/End time",
+                                  prm.get("End time"),
+                                  "give a time > 0 (the load path runs from "
+                                  "t = 0 to it)"));
+      const long steps = prm.get_integer("Load steps");
+      AssertThrow(steps >= 1,
+                  ExcInvalidInput("quasi-static/Load steps",
+                                  prm.get("Load steps"),
+                                  "give at least 1 step"));
+      n_load_steps           = static_cast<unsigned int>(steps);
+      bond_breaking_name     = prm.get("Bond breaking");
+      bond_breaking          = bond_breaking_name == "off" ?
+                                 BondBreaking::off :
+                               bond_breaking_name == "most critical" ?
+                                 BondBreaking::most_critical :
+                                 BondBreaking::all_beyond_critical;
+      reaction_ids_text      = prm.get("Reaction boundary ids");
+      reaction_ids           = Boundary::parse_boundary_ids(reaction_ids_text);
+      load_displacement_file = prm.get("Load-displacement file");
+      minimum_step           = prm.get_double("Minimum load step");
+      const double largest   = end_time / n_load_steps;
+      AssertThrow(minimum_step <= largest,
+                  ExcInvalidInput("quasi-static/Minimum load step",
+                                  prm.get("Minimum load step"),
+                                  "give at most 'End time' / 'Load steps' = " +
+                                    format_number(largest) +
+                                    ", or 0 for a 1024th of it"));
+      if (minimum_step == 0)
+        minimum_step = largest / 1024;
+      stretch_tolerance  = prm.get_double("Critical stretch tolerance");
+      max_bonds_per_step = prm.get_integer("Maximum bonds per step");
+      failure_fraction   = prm.get_double("Complete failure fraction");
+      failure.parse_parameters(prm, "quasi-static");
+    }
+
+
+    template <int dim>
+    std::vector<IO::OutputName>
+    QuasiStatic<dim>::output_names(const Simulator<dim> &simulator) const
+    {
+      const auto &output = simulator.get_output();
+      auto        names  = output.output_names(steps_load());
+      if (steps_load() && !load_displacement_file.empty())
+        names.push_back({"quasi-static/Load-displacement file",
+                         load_displacement_file,
+                         output.directory() + "/" + load_displacement_file,
+                         IO::OutputName::Kind::file,
+                         "the load-displacement file"});
+      return names;
     }
 
 
@@ -66,11 +193,40 @@ namespace PeriDEAL
                         "analytical solution: set 'Analytical solution/Compare "
                         "with analytical solution = true', or leave the entry "
                         "empty"));
-      simulator.get_boundary_treatment()
-        .template make_system<dim>(simulator.get_boundary_treatment_name())
-        ->check_input(simulator.get_linear_solver());
+      const auto probe =
+        simulator.get_boundary_treatment().template make_system<dim>(
+          simulator.get_boundary_treatment_name());
+      probe->check_input(simulator.get_linear_solver());
       if (simulator.get_quadrature_scheme().collocation() != nullptr)
         check_collocation_input(simulator);
+      const auto &bc = simulator.get_boundary_conditions();
+      for (const auto id : reaction_ids)
+        AssertThrow(bc.is_dirichlet_boundary(id),
+                    ExcInvalidInput("quasi-static/Reaction boundary ids",
+                                    reaction_ids_text,
+                                    "boundary id " + std::to_string(id) +
+                                      " has no Dirichlet layer, so nothing "
+                                      "holds it and it has no reaction; list "
+                                      "ids of 'Boundary conditions/Dirichlet "
+                                      "boundary ids' (" +
+                                      bc.dirichlet_ids_string() + ")"));
+      if (bond_breaking == BondBreaking::off)
+        return;
+      AssertThrow(probe->supports_bond_breaking(),
+                  ExcInvalidInput("quasi-static/Bond breaking",
+                                  bond_breaking_name,
+                                  "the boundary treatment '" +
+                                    simulator.get_boundary_treatment_name() +
+                                    "' does not break bonds; use 'Boundary "
+                                    "treatment/Treatment = none', or 'Bond "
+                                    "breaking = off'"));
+      AssertThrow(simulator.get_quadrature_scheme().collocation() == nullptr,
+                  ExcInvalidInput("quasi-static/Bond breaking",
+                                  bond_breaking_name,
+                                  "quasi-static bond breaking runs with "
+                                  "'Quadrature/Scheme = standard' so far "
+                                  "(the collocation rows hold no bonds to "
+                                  "break); set it, or 'Bond breaking = off'"));
     }
 
 
@@ -139,13 +295,48 @@ namespace PeriDEAL
     {
       std::vector<UnusedEntry> unused =
         simulator.get_boundary_conditions().unused_entries();
-      for (const char *entry :
-           {"Critical stretch", "Fracture energy", "Density"})
-        unused.push_back({std::string("Material model/*/") + entry,
-                          "the quasi-static problem is linear and static: it "
-                          "breaks no bonds and has no inertia (the entry "
-                          "acts in 'Problem type = explicit dynamics'); "
-                          "remove it"});
+      const std::string section = "quasi-static/";
+      unused.push_back({"Material model/*/Density",
+                        "the quasi-static problem has no inertia (the entry "
+                        "acts in 'Problem type = explicit dynamics'); "
+                        "remove it"});
+      if (bond_breaking == BondBreaking::off)
+        {
+          for (const char *entry : {"Critical stretch", "Fracture energy"})
+            unused.push_back({std::string("Material model/*/") + entry,
+                              "'quasi-static/Bond breaking = off': no bond "
+                              "breaks; set 'Bond breaking', or remove the "
+                              "entry"});
+          for (const char *entry : {"Pre-cracks",
+                                    "No-fail boxes",
+                                    "No-fail boundary ids",
+                                    "No-fail layer thickness",
+                                    "Critical stretch tolerance",
+                                    "Maximum bonds per step",
+                                    "Complete failure fraction"})
+            unused.push_back({section + entry,
+                              "'Bond breaking = off': no bond breaks; set "
+                              "'Bond breaking', or remove the entry"});
+        }
+      else
+        {
+          for (auto &entry : failure.unused_entries())
+            unused.push_back(entry);
+          if (reaction_ids.empty())
+            unused.push_back({section + "Complete failure fraction",
+                              "complete failure is told by the reaction, and "
+                              "no 'Reaction boundary ids' are given; give "
+                              "them, or remove the entry"});
+        }
+      if (!steps_load())
+        for (const char *entry : {"Load-displacement file",
+                                  "Minimum load step",
+                                  "Reaction boundary ids"})
+          unused.push_back({section + entry,
+                            "one solve at 'End time' ('Load steps = 1', "
+                            "'Bond breaking = off') writes no "
+                            "load-displacement file; give more 'Load "
+                            "steps', or remove the entry"});
       if (simulator.get_analytical_solution() == nullptr)
         unused.push_back({"Analytical solution/Displacement/",
                           "'Analytical solution/Compare with analytical "
@@ -159,11 +350,16 @@ namespace PeriDEAL
     void
     QuasiStatic<dim>::run(Simulator<dim> &simulator)
     {
+      if (steps_load())
+        {
+          run_load_steps(simulator);
+          return;
+        }
       // Every function of the set-up at the one time of this problem.
-      simulator.set_time(load_time);
+      simulator.set_time(end_time);
       simulator.get_pcout()
         << "           boundary conditions evaluated at t = "
-        << format_number(load_time) << " ('quasi-static/Time')"
+        << format_number(end_time) << " ('quasi-static/End time')"
         << (simulator.get_boundary_conditions().load_depends_on_time() ||
                 simulator.get_boundary_conditions()
                   .dirichlet_depends_on_time() ?
@@ -183,8 +379,10 @@ namespace PeriDEAL
 
 
     template <int dim>
-    void
-    QuasiStatic<dim>::postprocess(Simulator<dim> &simulator)
+    std::string
+    QuasiStatic<dim>::postprocess(Simulator<dim>                   &simulator,
+                                  const std::vector<IO::NodeField> &extra,
+                                  const unsigned int                index)
     {
       const auto  ctx                    = simulator.system_context();
       const auto *analytical_solution    = simulator.get_analytical_solution();
@@ -288,14 +486,16 @@ namespace PeriDEAL
                     << std::endl;
         }
 
+      fields.insert(fields.end(), extra.begin(), extra.end());
       const auto        &output = simulator.get_output();
       TimerOutput::Scope scope(ctx.timer, "output");
       const std::string  record =
-        output.write(ctx.dof_handler, ctx.nodes, displacement, fields);
+        output.write(ctx.dof_handler, ctx.nodes, displacement, fields, index);
       if (!record.empty())
         ctx.pcout << "[" << std::setw(8) << std::fixed << std::setprecision(2)
                   << simulator.elapsed() << " s] wrote " << output.directory()
                   << "/" << record << std::defaultfloat << std::endl;
+      return record;
     }
 
 

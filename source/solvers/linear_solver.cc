@@ -519,7 +519,7 @@ namespace PeriDEAL
           catch (const SolverControl::NoConvergence &e)
             {
               AssertThrow(false,
-                          ExcMessage(
+                          ExcNoConvergence(
                             "The linear solver (" + report.method +
                             ") did not converge: after " +
                             std::to_string(e.last_step) +

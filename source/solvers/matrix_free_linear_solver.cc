@@ -88,7 +88,7 @@ namespace PeriDEAL
                 << " iterations the residual is " << e.last_residual / rhs_norm
                 << " of |b|, above 'Linear solver/Relative tolerance' = "
                 << tolerance << ". " << fix;
-        AssertThrow(false, ExcMessage(message.str()));
+        AssertThrow(false, ExcNoConvergence(message.str()));
         std::abort(); // not reached
       }
     } // namespace

@@ -356,7 +356,7 @@ group_no_effect() {
   # before any output.
   for np in 1 2; do
     expect_error "s/    set Poisson's ratio = 0.25/    set Poisson's ratio = 0.25\n    set Critical stretch = 0.01/" \
-      "Invalid value '0.01' for the parameter 'Material model/linear peridynamic solid/Critical stretch': this entry has no effect here: the quasi-static problem is linear and static" $np
+      "Invalid value '0.01' for the parameter 'Material model/linear peridynamic solid/Critical stretch': this entry has no effect here: 'quasi-static/Bond breaking = off': no bond breaks" $np
     expect_error 's/  set Dirichlet boundary ids = 0, 1, 2, 3/  set Dirichlet boundary ids = 0, 1, 2, 3\n  set Dirichlet components =/' \
       "Invalid value '' for the parameter 'Boundary conditions/Dirichlet components': with no component the Dirichlet layers and boxes would prescribe nothing" $np
   done

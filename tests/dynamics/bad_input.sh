@@ -51,8 +51,6 @@ group_regions() {
     "Invalid value 't +* 2' for the parameter 'explicit dynamics/Load history'"
   expect_error 's/    set Critical stretch = 0.01/    set Critical stretch = 0.01\n    set Fracture energy = 10/' \
     "Invalid value '10' for the parameter 'Material model/bond-based/Fracture energy': give either 'Critical stretch' or 'Fracture energy'"
-  expect_error "s/  set Model = bond-based/  set Model = linear peridynamic solid/; s/  subsection bond-based/  subsection linear peridynamic solid/; s/    set Critical stretch = 0.01/    set Fracture energy = 10/" \
-    "Invalid value '10' for the parameter 'Material model/linear peridynamic solid/Fracture energy': this model has no relation"
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = fictitious layer\nend/' \
     "Invalid value 'fictitious layer' for the parameter 'Boundary treatment/Treatment': explicit dynamics steps the body's own nodes only"
 

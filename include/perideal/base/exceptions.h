@@ -39,6 +39,14 @@ namespace PeriDEAL
   }
 
   /**
+   * A linear solve that did not reach its tolerance (the message says
+   * which, with the residual and a fix). Its own type, so that a caller
+   * that can retry (a load step that is cut) catches this and nothing
+   * else.
+   */
+  DeclException1(ExcNoConvergence, std::string, << arg1);
+
+  /**
    * A name (of a model, algorithm, boundary treatment, ...) that is not
    * registered. @p arg3 lists the registered names.
    */

@@ -188,6 +188,13 @@ namespace PeriDEAL
       bool
       is_dirichlet_boundary(const types::boundary_id id) const;
 
+      /// 'Dirichlet layer thickness', in horizons.
+      double
+      dirichlet_layer_thickness() const
+      {
+        return layer_thickness;
+      }
+
       /// Whether faces with boundary id @p id carry a traction.
       bool
       is_traction_boundary(const types::boundary_id id) const;

@@ -7,10 +7,13 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/boundary/system_context.h>
+#include <perideal/discretization/bond_state.h>
+#include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/solution_output.h>
 #include <perideal/solvers/linear_solver.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -87,6 +90,83 @@ namespace PeriDEAL
       /// Their name in the log ("surface nodes").
       virtual std::string
       extra_nodes_name() const;
+
+      /**
+       * @name Bond failure in load-stepped static runs
+       *
+       * Problems::QuasiStatic drives the load steps and asks the system for
+       * equilibria with the bonds intact so far, for the bonds over their
+       * critical stretch, and breaks them; a system that cannot break
+       * bonds says so in supports_bond_breaking() and the problem type
+       * refuses the input before anything is built.
+       */
+      /// @{
+
+      /// Whether the functions of this group work (default false).
+      virtual bool
+      supports_bond_breaking() const;
+
+      /// Breaks the bonds that cross the pre-cracks in the given bond
+      /// state and returns how many it broke on all processes.
+      using CutBonds =
+        std::function<std::size_t(const Discretization::NeighborList<dim> &,
+                                  Discretization::BondState<dim> &)>;
+
+      /**
+       * After setup(): bond failure at @p critical_stretch (one value per
+       * node of the set, owned and ghost; +inf: never fails), and the bonds
+       * that @p cut breaks broken from the start. Returns the number cut.
+       * Collective.
+       */
+      virtual std::size_t
+      setup_failure(const SystemContext<dim>  &context,
+                    const std::vector<double> &critical_stretch,
+                    const CutBonds            &cut);
+
+      /**
+       * Equilibrium with the bonds intact now, at the boundary conditions
+       * of the context's current time, warm-started from the last
+       * solution; no log line (the solver report and the equilibrium
+       * residual go into the run summary). A node whose bonds are all
+       * broken is held at its last displacement (its load, if any, is
+       * dropped). Throws on a solve that does not converge; the state is
+       * then as before the call. Collective.
+       */
+      virtual void
+      solve_step(const SystemContext<dim>      &context,
+                 TrilinosWrappers::MPI::Vector &displacement);
+
+      /**
+       * The intact bonds whose stretch under the last solution reaches
+       * @p factor times their critical stretch, on all processes
+       * (nothing breaks). Collective.
+       */
+      virtual std::size_t
+      count_critical_bonds(const double factor);
+
+      /// Break the bonds count_critical_bonds() counts; returns how many
+      /// broke on all processes. Collective.
+      virtual std::size_t
+      break_critical_bonds(const double factor);
+
+      /// The damage (broken share of the bonds) of each owned body node.
+      virtual std::vector<double>
+      damage(const SystemContext<dim> &context) const;
+
+      /// The nodes held because all their bonds broke, on all processes.
+      virtual unsigned int
+      n_isolated_nodes() const;
+
+      /**
+       * The force that holds the owned body nodes flagged in @p flagged
+       * (one flag per owned node) in the last solution: minus the sum of
+       * the body's internal forces on them, on all processes (in 2D per
+       * unit thickness). Collective.
+       */
+      virtual Tensor<1, dim>
+      holding_force(const SystemContext<dim> &context,
+                    const std::vector<bool>  &flagged) const;
+      /// @}
     };
   } // namespace Boundary
 } // namespace PeriDEAL

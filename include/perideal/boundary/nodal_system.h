@@ -48,6 +48,35 @@ namespace PeriDEAL
       bool
       is_constrained(const Discretization::Node<dim> &node) const override;
 
+      /// True: the BondOperator breaks bonds (nodal_system_fracture.cc).
+      bool
+      supports_bond_breaking() const override;
+
+      std::size_t
+      setup_failure(const SystemContext<dim>  &context,
+                    const std::vector<double> &critical_stretch,
+                    const typename DiscreteSystem<dim>::CutBonds &cut) override;
+
+      void
+      solve_step(const SystemContext<dim>      &context,
+                 TrilinosWrappers::MPI::Vector &displacement) override;
+
+      std::size_t
+      count_critical_bonds(const double factor) override;
+
+      std::size_t
+      break_critical_bonds(const double factor) override;
+
+      std::vector<double>
+      damage(const SystemContext<dim> &context) const override;
+
+      unsigned int
+      n_isolated_nodes() const override;
+
+      Tensor<1, dim>
+      holding_force(const SystemContext<dim> &context,
+                    const std::vector<bool>  &flagged) const override;
+
     private:
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
@@ -61,20 +90,47 @@ namespace PeriDEAL
       void
       check_rigid_motions(const SystemContext<dim> &context) const;
 
+      /// Hold the owned nodes whose bonds all broke at their last
+      /// displacement: constraints added to those of the boundary
+      /// conditions.
+      void
+      hold_isolated_nodes(const SystemContext<dim> &context);
+
       void
       solve_matrix_free(const SystemContext<dim>      &context,
                         TrilinosWrappers::MPI::Vector &displacement);
 
+      /// Constraints and load at the current time, the constrained
+      /// operator and the lifted right-hand side (timer "assembly").
+      void
+      assemble_matrix_free_step(const SystemContext<dim> &context);
+
+      /// The local elasticity matrix and the constant modes, once.
+      void
+      prepare_preconditioner(const SystemContext<dim> &context);
+
+      /// The Krylov solve of the lifted system, warm-started from the last
+      /// solution's free part.
+      void
+      solve_matrix_free_step(const SystemContext<dim>      &context,
+                             TrilinosWrappers::MPI::Vector &displacement);
+
+      /// The log line of the matrix-free operator.
+      void
+      print_operator(const SystemContext<dim> &context) const;
+
       void
       solve_assembled(const SystemContext<dim>      &context,
-                      TrilinosWrappers::MPI::Vector &displacement);
+                      TrilinosWrappers::MPI::Vector &displacement,
+                      const bool                     verbose);
 
       /// Equilibrium with BondOperator::apply() at the free DoFs, into
-      /// the run summary and the log.
+      /// the run summary (and the log if @p verbose); keeps the
+      /// displacement and the internal forces.
       void
-      check_equilibrium(
-        const SystemContext<dim>            &context,
-        const TrilinosWrappers::MPI::Vector &displacement) const;
+      check_equilibrium(const SystemContext<dim>            &context,
+                        const TrilinosWrappers::MPI::Vector &displacement,
+                        const bool                           verbose = true);
 
       Discretization::BondState<dim> bond_state;
       Operators::BondOperator<dim>   bond_operator;
@@ -86,6 +142,18 @@ namespace PeriDEAL
       TrilinosWrappers::SparseMatrix      system_matrix;
       TrilinosWrappers::MPI::Vector       load;
       TrilinosWrappers::MPI::Vector       system_rhs;
+      /// Matrix-free steps: the lifted right-hand side and prescribed
+      /// values, the last solution's free part (warm start), the
+      /// preconditioner's matrix and modes (built once).
+      VectorType                     step_rhs, step_prescribed, free_solution;
+      bool                           preconditioner_ready = false;
+      std::vector<std::vector<bool>> constant_modes;
+      /// The last solution (ghosted) and its internal forces.
+      VectorType last_displacement, last_force;
+      /// Bond failure (setup_failure()): the critical stretch per node.
+      std::vector<double> critical_stretch;
+      /// Owned nodes held because all their bonds broke.
+      unsigned int n_isolated = 0;
     };
   } // namespace Boundary
 } // namespace PeriDEAL

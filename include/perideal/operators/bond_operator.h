@@ -128,6 +128,16 @@ namespace PeriDEAL
       commit_broken_bonds(Discretization::BondState<dim> &state);
 
       /**
+       * The bonds that apply() found over their critical stretch since
+       * set_kinematics() or the last commit, each counted once on all
+       * processes together (each end of a bond is owned by one process and
+       * sees the same stretch to the bit), and then forgotten: nothing
+       * breaks. Collective.
+       */
+      std::size_t
+      count_exceeded_bonds();
+
+      /**
        * The elastic energy \f$\sum_i V_i W_i\f$ of the owned nodes of all
        * processes (Models::Model::dilatation_energy_modulus() gives \f$W_i\f$),
        * with the kinematics of apply() and the intact bonds. Collective.

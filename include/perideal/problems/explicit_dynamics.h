@@ -12,6 +12,7 @@
 #include <perideal/discretization/crack_geometry.h>
 #include <perideal/io/crack_tip_tracker.h>
 #include <perideal/operators/bond_operator.h>
+#include <perideal/problems/bond_failure.h>
 #include <perideal/problems/explicit_dynamics/velocity_verlet.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
@@ -282,7 +283,6 @@ namespace PeriDEAL
       bool         overwrite_checkpoint   = false;
       unsigned int steps_per_run          = 0;
       double       last_checkpoint        = 0;
-      std::string  pre_crack_text, no_fail_text;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement;
       std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity;
       std::unique_ptr<FunctionParser<1>>              load_history;
@@ -291,17 +291,14 @@ namespace PeriDEAL
         load_history_entry, dirichlet_entry;
       /// Step count and output schedule; non-finite values; the energy
       /// balance.
-      TimeLoop                        time_loop;
-      FiniteCheck                     finite_check{" s"};
-      EnergyBalanceMonitor            energy_monitor;
-      Discretization::PreCracks<dim>  pre_cracks;
-      std::vector<BoundingBox<dim>>   no_fail_boxes;
-      std::vector<types::boundary_id> no_fail_ids;
-      std::string                     no_fail_ids_text, no_fail_thickness_text;
-      double                          no_fail_thickness = 1;
-      IO::CrackTipTracker<dim>        crack_tip;
-      std::vector<Point<dim>>         probe_points;
-      std::string                     probe_text;
+      TimeLoop             time_loop;
+      FiniteCheck          finite_check{" s"};
+      EnergyBalanceMonitor energy_monitor;
+      /// Pre-cracks and no-fail regions.
+      BondFailure<dim>         failure;
+      IO::CrackTipTracker<dim> crack_tip;
+      std::vector<Point<dim>>  probe_points;
+      std::string              probe_text;
       /// Per probe: the local index of the nearest node if this process
       /// owns it, else invalid.
       std::vector<unsigned int> probe_nodes;

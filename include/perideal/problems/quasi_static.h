@@ -4,6 +4,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/boundary/discrete_system.h>
+#include <perideal/problems/bond_failure.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
 
@@ -14,9 +15,9 @@ namespace PeriDEAL
   namespace Problems
   {
     /**
-     * The linear quasi-static PD problem \f$K u = V b\f$ with volumetric
-     * Dirichlet layers, body forces and tractions (problem type
-     * `quasi-static`).
+     * The quasi-static PD problem (problem type `quasi-static`): equilibrium
+     * \f$K u = V b\f$ with volumetric Dirichlet layers, body forces and
+     * tractions, in one solve or in load steps with bond breaking.
      *
      * run() asks the boundary treatment for its Boundary::DiscreteSystem
      * (Boundary::NodalSystem for `none`: the BondOperator, matrix-free or
@@ -26,14 +27,28 @@ namespace PeriDEAL
      * per-node CSV. It never branches on the treatment.
      *
      * The functions of 'Boundary conditions' and the analytical solution
-     * are evaluated at the time 'quasi-static/Time' (default 1, the end of
-     * a unit load ramp), which the run's log states.
+     * are functions of the (pseudo-)time t. With 'Load steps = 1' and
+     * 'Bond breaking = off' (the defaults) they are evaluated once, at
+     * 'End time'. Otherwise the run steps from t = 0 to 'End time'
+     * (quasi_static_steps.cc): at each step the equilibrium with the bonds
+     * intact so far (warm-started Krylov or direct solve), then the bonds
+     * over their critical stretch break ('Bond breaking': all of them, or
+     * the most critical ones per sweep) and the same load is solved again
+     * until no bond breaks. The step is halved while a bond is further
+     * than 'Critical stretch tolerance' past its critical stretch or a
+     * solve fails, down to 'Minimum load step', and doubled (up to 'End
+     * time' / 'Load steps') after a step without breaking. Bonds that keep
+     * breaking at a fixed load are reported as unstable growth, with the
+     * critical load; the run stops at complete failure (the reaction below
+     * 'Complete failure fraction' of its peak). Rows of the load-displacement
+     * CSV, a damage PVD series and a progress line per step.
      */
     template <int dim>
     class QuasiStatic : public ProblemType<dim>
     {
     public:
-      /// 'Time', at which the loads are evaluated.
+      /// 'End time', 'Load steps', 'Bond breaking', the step control,
+      /// the reactions and the failure entries (BondFailure).
       static void
       declare_parameters(ParameterHandler &prm);
 
@@ -64,13 +79,72 @@ namespace PeriDEAL
       void
       run(Simulator<dim> &simulator) override;
 
+      /// The records and PVD series of load-stepped runs, the
+      /// load-displacement file.
+      std::vector<IO::OutputName>
+      output_names(const Simulator<dim> &simulator) const override;
+
     private:
+      /// 'Bond breaking'.
+      enum class BondBreaking
+      {
+        off,
+        all_beyond_critical,
+        most_critical
+      };
+
+      /// Whether the run steps the load (more than one step, or bond
+      /// breaking).
+      bool
+      steps_load() const
+      {
+        return n_load_steps > 1 || bond_breaking != BondBreaking::off;
+      }
+
+      /// The load-stepped run (quasi_static_steps.cc).
+      void
+      run_load_steps(Simulator<dim> &simulator);
+
+      /// One sweep of 'Bond breaking' on the last solution: the bonds
+      /// over their critical stretch, or the most critical of them.
+      /// Returns the number broken. Collective.
+      std::size_t
+      break_bonds();
+
+      /**
+       * The largest ratio of a bond's stretch to its critical stretch in
+       * the last solution, to a relative @p precision, by bisection on
+       * the count of bonds over a multiple of the critical stretch; 0 when
+       * no bond is stretched by more than 2^-40 of it. Collective.
+       */
+      double
+      largest_stretch_ratio(const double precision);
+
+      /// The owned nodes with a prescribed component in the Dirichlet
+      /// layers of 'Reaction boundary ids' (after the first solve).
+      std::vector<bool>
+      reaction_nodes(const Simulator<dim> &simulator) const;
+
+      /// The load-displacement CSV under a temporary name, renamed
+      /// (rank 0; collective verdict).
+      void
+      write_load_displacement(const Simulator<dim> &simulator) const;
+
+      /// A damage record of the PVD series (collective).
+      void
+      write_step_record(Simulator<dim> &simulator, const double time);
+
       /// The entries that the collocation scheme needs (check_input()).
       void
       check_collocation_input(const Simulator<dim> &simulator) const;
 
-      void
-      postprocess(Simulator<dim> &simulator);
+      /// Errors against the analytical solution, the node data file and
+      /// the PVTU record @p index with @p extra fields; returns the
+      /// record's name.
+      std::string
+      postprocess(Simulator<dim>                   &simulator,
+                  const std::vector<IO::NodeField> &extra = {},
+                  const unsigned int                index = 0);
 
       /// Gather every node's position, displacement and error to the CSV
       /// named in 'Output/Node data file'.
@@ -81,8 +155,28 @@ namespace PeriDEAL
       /// The system built by the boundary treatment.
       std::unique_ptr<Boundary::DiscreteSystem<dim>> system;
       TrilinosWrappers::MPI::Vector                  displacement;
-      /// 'Time'.
-      double load_time = 1;
+
+      // Input.
+      double                          end_time      = 1;
+      unsigned int                    n_load_steps  = 1;
+      BondBreaking                    bond_breaking = BondBreaking::off;
+      std::string                     bond_breaking_name;
+      double                          minimum_step       = 0;
+      double                          stretch_tolerance  = 0.01;
+      unsigned int                    max_bonds_per_step = 0;
+      double                          failure_fraction   = 0.01;
+      std::vector<types::boundary_id> reaction_ids;
+      std::string                     reaction_ids_text;
+      std::string                     load_displacement_file;
+      /// Pre-cracks and no-fail regions.
+      BondFailure<dim> failure;
+
+      // State of a load-stepped run.
+      /// Rows of the load-displacement CSV: step, time, reaction, broken
+      /// bonds, iterations.
+      std::vector<std::vector<double>> rows;
+      /// The PVD series: (time, record).
+      std::vector<std::pair<double, std::string>> records;
     };
   } // namespace Problems
 } // namespace PeriDEAL

@@ -153,7 +153,7 @@ namespace PeriDEAL
                                       "Crack tip damage",
                                       "End time",
                                       "Time step"};
-      if (!no_fail_ids.empty())
+      if (!failure.no_fail_boundary_ids().empty())
         own.push_back("No-fail layer thickness");
       if (given_time_step == 0)
         own.push_back("Safety factor");

@@ -74,31 +74,7 @@ namespace PeriDEAL
       prm.enter_subsection("Initial velocity");
       Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
       prm.leave_subsection();
-      prm.declare_entry(
-        "Pre-cracks",
-        "",
-        Patterns::Anything(),
-        "Bonds that cross these start broken. 2D: segments 'x1, y1, x2, y2', "
-        "3D: planar polygons 'x1, y1, z1, x2, y2, z2, x3, y3, z3, ...'; "
-        "several separated by ';'. Empty: none.");
-      prm.declare_entry(
-        "No-fail boxes",
-        "",
-        Patterns::Anything(),
-        "Bonds with an end node in one of these boxes never break. 'xmin, "
-        "ymin[, zmin], xmax, ymax[, zmax]', several separated by ';'.");
-      prm.declare_entry(
-        "No-fail boundary ids",
-        "",
-        Patterns::List(Patterns::Integer(0, 254)),
-        "Bonds with an end node closer than 'No-fail layer thickness' to a "
-        "boundary face with one of these ids never break: keeps loaded or "
-        "gripped edges from shattering.");
-      prm.declare_entry("No-fail layer thickness",
-                        "1",
-                        Patterns::Double(0),
-                        "Thickness of the no-fail layers along 'No-fail "
-                        "boundary ids', in horizons.");
+      BondFailure<dim>::declare_parameters(prm);
       IO::CrackTipTracker<dim>::declare_parameters(prm);
       prm.declare_entry("Probe points",
                         "",
@@ -243,21 +219,7 @@ namespace PeriDEAL
       prm.leave_subsection();
       prm.leave_subsection();
       prm.enter_subsection("explicit dynamics");
-      pre_crack_text = prm.get("Pre-cracks");
-      pre_cracks.parse(pre_crack_text, "explicit dynamics/Pre-cracks");
-      no_fail_text = prm.get("No-fail boxes");
-      no_fail_boxes =
-        Discretization::parse_boxes<dim>(no_fail_text,
-                                         "explicit dynamics/No-fail boxes");
-      no_fail_ids_text       = prm.get("No-fail boundary ids");
-      no_fail_ids            = Boundary::parse_boundary_ids(no_fail_ids_text);
-      no_fail_thickness_text = prm.get("No-fail layer thickness");
-      no_fail_thickness      = prm.get_double("No-fail layer thickness");
-      AssertThrow(no_fail_ids.empty() || no_fail_thickness > 0,
-                  ExcInvalidInput("explicit dynamics/No-fail layer thickness",
-                                  no_fail_thickness_text,
-                                  "give a thickness > 0 (in horizons), for "
-                                  "instance 1"));
+      failure.parse_parameters(prm, "explicit dynamics");
       crack_tip.parse_parameters(prm, "explicit dynamics");
       probe_text = prm.get("Probe points");
       probe_points =
@@ -289,11 +251,8 @@ namespace PeriDEAL
                           "with 'Time step = 0' the step is 'Safety factor' "
                           "(at most 1) times the stability bound, never "
                           "above it; remove the entry"});
-      if (no_fail_ids.empty())
-        unused.push_back({section + "No-fail layer thickness",
-                          "it is the thickness of the layers along 'No-fail "
-                          "boundary ids', and none are given; give them, or "
-                          "remove the entry"});
+      for (auto &entry : failure.unused_entries())
+        unused.push_back(entry);
       if (!crack_tip.enabled())
         for (const char *entry : {"Crack tip region", "Crack tip damage"})
           unused.push_back({section + entry,

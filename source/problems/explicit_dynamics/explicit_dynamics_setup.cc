@@ -42,52 +42,12 @@ namespace PeriDEAL
       bond_operator.reinit(nodes, lists, model, horizon, &bond_state);
 
       // Failure: the model's critical stretch, none in the no-fail boxes
-      // and layers (each of which must hold a node).
-      const double        s0 = model.critical_stretch(horizon);
-      std::vector<double> critical(nodes.size(), s0);
-      const auto          no_fail = nodes_in_region(
-        simulator,
-        NodeRegion<dim>{no_fail_boxes,
-                                 "explicit dynamics/No-fail boxes",
-                                 no_fail_text,
-                                 "keeps no bond from failing",
-                                 no_fail_ids,
-                                 "explicit dynamics/No-fail boundary ids",
-                                 no_fail_ids_text,
-                                 no_fail_thickness,
-                                 "explicit dynamics/No-fail layer thickness",
-                                 no_fail_thickness_text,
-                                 "no-fail layer"});
-      for (unsigned int i = 0; i < nodes.size(); ++i)
-        if (no_fail[i])
-          critical[i] = std::numeric_limits<double>::infinity();
-      bond_operator.set_kinematics(finite_kinematics, critical);
-
-      double h = 0;
-      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        h = std::max(h, std::pow(nodes[i].volume(), 1. / dim));
-      h = Utilities::MPI::max(h, comm);
-      std::vector<std::size_t> cut_per_crack;
-      const std::size_t        n_cut =
-        pre_cracks.break_bonds(nodes,
-                               lists,
-                               bond_state,
-                               horizon + 2 * std::sqrt(dim) * h,
-                               &cut_per_crack);
-      AssertThrow(pre_cracks.empty() || n_cut > 0,
-                  ExcInvalidInput("explicit dynamics/Pre-cracks",
-                                  pre_crack_text,
-                                  "no bond crosses the pre-cracks: they lie "
-                                  "outside the body"));
-      for (std::size_t k = 0; k < cut_per_crack.size(); ++k)
-        AssertThrow(cut_per_crack[k] > 0,
-                    ExcInvalidInput("explicit dynamics/Pre-cracks",
-                                    pre_crack_text,
-                                    "pre-crack " + std::to_string(k + 1) +
-                                      " crosses no bond (that another "
-                                      "pre-crack does not cross already): it "
-                                      "lies outside the body; move it onto "
-                                      "the body, or remove it"));
+      // and layers; the pre-cracks.
+      const double s0 = model.critical_stretch(horizon);
+      bond_operator.set_kinematics(finite_kinematics,
+                                   failure.critical_stretches(simulator));
+      const std::size_t n_cut =
+        failure.cut_pre_cracks(simulator, lists, bond_state);
       bond_operator.update_bond_state();
       broken_bonds = n_cut;
 
