@@ -14,6 +14,30 @@ namespace PeriDEAL
 {
   namespace Boundary
   {
+    namespace
+    {
+      // One evaluation of the forces with failure at factor times the
+      // critical stretches: the bonds over it are recorded in the operator
+      // (BondOperator::count_exceeded_bonds(), commit_broken_bonds()).
+      template <int dim>
+      void
+      find_bonds_over(
+        Operators::BondOperator<dim>                     &bond_operator,
+        const std::vector<double>                        &critical_stretch,
+        const double                                      factor,
+        const LinearAlgebra::distributed::Vector<double> &displacement)
+      {
+        std::vector<double> scaled(critical_stretch);
+        for (double &s0 : scaled)
+          s0 *= factor;
+        bond_operator.set_kinematics(false, scaled);
+        LinearAlgebra::distributed::Vector<double> force;
+        bond_operator.initialize_dof_vector(force);
+        bond_operator.apply(displacement, force);
+      }
+    } // namespace
+
+
     template <int dim>
     bool
     NodalSystem<dim>::supports_bond_breaking() const
@@ -102,13 +126,10 @@ namespace PeriDEAL
     {
       AssertThrow(!critical_stretch.empty() && last_displacement.size() > 0,
                   ExcInternalError());
-      std::vector<double> scaled(critical_stretch);
-      for (double &s0 : scaled)
-        s0 *= factor;
-      bond_operator.set_kinematics(false, scaled);
-      VectorType force;
-      bond_operator.initialize_dof_vector(force);
-      bond_operator.apply(last_displacement, force);
+      find_bonds_over(bond_operator,
+                      critical_stretch,
+                      factor,
+                      last_displacement);
       const std::size_t n = bond_operator.count_exceeded_bonds();
       bond_operator.set_kinematics(false);
       return n;
@@ -121,13 +142,10 @@ namespace PeriDEAL
     {
       AssertThrow(!critical_stretch.empty() && last_displacement.size() > 0,
                   ExcInternalError());
-      std::vector<double> scaled(critical_stretch);
-      for (double &s0 : scaled)
-        s0 *= factor;
-      bond_operator.set_kinematics(false, scaled);
-      VectorType force;
-      bond_operator.initialize_dof_vector(force);
-      bond_operator.apply(last_displacement, force);
+      find_bonds_over(bond_operator,
+                      critical_stretch,
+                      factor,
+                      last_displacement);
       const std::size_t n = bond_operator.commit_broken_bonds(bond_state);
       bond_operator.set_kinematics(false);
       return n;
