@@ -208,6 +208,9 @@ namespace PeriDEAL
         parse_vector_function<dim>(prm,
                                    "Dirichlet displacement",
                                    dirichlet_uses_time);
+      prm.enter_subsection("Dirichlet displacement");
+      dirichlet_expression_text = prm.get("Function expression");
+      prm.leave_subsection();
       body_force =
         parse_vector_function<dim>(prm, "Body force", body_force_uses_time);
       traction =
@@ -368,12 +371,17 @@ namespace PeriDEAL
                 if (!std::isfinite(g[c]) && non_finite.empty())
                   {
                     std::ostringstream where;
-                    where << "Invalid value for the parameter 'Boundary "
+                    where << "Invalid value '" << dirichlet_expression_text
+                          << "' for the parameter 'Boundary "
                              "conditions/Dirichlet displacement/Function "
                              "expression': component "
                           << c << " is " << g[c] << " at the node ("
-                          << node.location
-                          << "); give an expression that is finite in every "
+                          << node.location << ")";
+                    if (dirichlet_uses_time)
+                      where
+                        << " at t = "
+                        << format_number(dirichlet_displacement->get_time());
+                    where << "; give an expression that is finite in every "
                              "Dirichlet layer and box.";
                     non_finite = where.str();
                   }

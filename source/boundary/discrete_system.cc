@@ -58,6 +58,23 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    DiscreteSystem<dim>::supports_dynamic_relaxation() const
+    {
+      return false;
+    }
+
+
+    template <int dim>
+    void
+    DiscreteSystem<dim>::set_dynamic_relaxation(
+      const Solvers::DynamicRelaxation *)
+    {
+      AssertThrow(false, ExcInternalError());
+    }
+
+
+    template <int dim>
     void
     DiscreteSystem<dim>::solve_step(const SystemContext<dim> &,
                                     TrilinosWrappers::MPI::Vector &)

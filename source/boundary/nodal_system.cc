@@ -232,11 +232,16 @@ namespace PeriDEAL
       {
         TimerOutput::Scope scope(context.timer, "solve");
         context.summary.solver =
-          context.linear_solver.solve(constrained_operator,
+          dynamic_relaxation != nullptr ?
+            dynamic_relaxation->solve(constrained_operator,
                                       solution,
                                       step_rhs,
-                                      &local_matrix,
-                                      constant_modes);
+                                      context.communicator) :
+            context.linear_solver.solve(constrained_operator,
+                                        solution,
+                                        step_rhs,
+                                        &local_matrix,
+                                        constant_modes);
       }
       free_solution = solution;
       solution += step_prescribed;

@@ -104,10 +104,12 @@ namespace PeriDEAL
                                  TrilinosWrappers::MPI::Vector &displacement)
     {
       context.summary.n_unknowns = context.dof_handler.n_dofs();
-      if (context.linear_solver.is_matrix_free())
+      if (dynamic_relaxation != nullptr ||
+          context.linear_solver.is_matrix_free())
         {
           assemble_matrix_free_step(context);
-          prepare_preconditioner(context);
+          if (dynamic_relaxation == nullptr)
+            prepare_preconditioner(context);
           solve_matrix_free_step(context, displacement);
           check_equilibrium(context, displacement, false);
         }

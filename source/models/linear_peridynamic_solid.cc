@@ -1,14 +1,13 @@
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/base/quadrature_lib.h>
 
 #include <perideal/base/exceptions.h>
+#include <perideal/models/crack_plane_integrals.h>
 #include <perideal/models/influence_function.h>
 #include <perideal/models/model.h>
 
 #include <cmath>
 #include <memory>
 #include <string>
-#include <utility>
 
 namespace PeriDEAL
 {
@@ -89,82 +88,43 @@ namespace PeriDEAL
 
     protected:
       /**
-       * The critical stretch at which breaking the bonds that cross a unit
-       * area of a plane releases @p G0 (doc/explicit-dynamics.md, "Critical
-       * stretch from the fracture energy (LPS)"). Under the uniform stretch
-       * s (e = s r on every bond) a node at depth \f$z = \zeta\delta\f$
-       * whose crossing bonds break keeps its reference m; its dilatation
-       * drops to \f$d\,s(1 - f)\f$ and its deviatoric sum to
-       * \f$s^2 m (1 - f)\f$, f(ζ) the share of m held by the crossing bonds.
-       * The energy of this model (the potential of its forces, broken bonds
-       * included) then drops by
-       * \f$\Delta W = s^2[\tfrac{d\,c_K}{2}(2f - f^2) + \tfrac{c_\mu}{2}f]\f$,
-       * and both sides of the crack give
+       * The critical stretch at which separating two half-spaces across a
+       * plane costs @p G0 per unit area (doc/explicit-dynamics.md, "Critical
+       * stretch from the fracture energy (LPS)"). The halves move apart
+       * rigidly, normal to the plane, so only the crossing bonds stretch; a
+       * bond breaks when its stretch reaches s0, and the work done until
+       * every crossing bond has broken is the fracture energy. With the
+       * energy split as \f$W = \frac{K_a}{2}\theta^2 + \frac{c_\mu}{2m}
+       * \sum \omega e^2 w\f$ (\f$d K_a = c_K\f$), the extension part is the
+       * energy of each crossing bond at s0 and the dilatation part follows
+       * the node's dilatation as its bonds break one by one:
        * \f[
-       *   G_0 = 2\int_0^\delta \Delta W\,dz
-       *       = \delta s_0^2\,[d\,c_K\,(2I_1 - I_2) + c_\mu I_1],\qquad
-       *   I_k = \int_0^1 f(\zeta)^k d\zeta,
+       *   G_0 = \delta s_0^2\,[d\,c_K\,J + c_\mu I_1],
        * \f]
-       * with \f$I_1, I_2\f$ by Gauss quadrature for the influence function
-       * (constant ω in 3D: 5/24 and 125/1848).
+       * \f$I_1\f$ the depth integral of the crossing share of m and J the
+       * separation integral (CrackPlaneIntegrals; 3D constant ω: I1 = 5/24,
+       * J = 0.04258858425). At \f$c_K = 0\f$ (ν = 1/4 in 3D, 1/3 in plane
+       * stress) it is the Silling & Askari sum of the energies of the crossing
+       * bonds.
        */
       double
       critical_stretch_from_fracture_energy(const double G0,
                                             const double horizon) const override
       {
-        const auto   integrals = crossing_share_integrals();
         const double factor =
-          dim * c_bulk * (2 * integrals.first - integrals.second) +
-          c_shear * integrals.first;
+          dim * c_bulk *
+            CrackPlaneIntegrals::separation_dilatation<dim>(*this->omega) +
+          c_shear * CrackPlaneIntegrals::crossing_share<dim>(*this->omega);
         AssertThrow(factor > 0,
                     ExcInvalidInput(this->input_path() + "Fracture energy",
                                     std::to_string(G0),
-                                    "the elastic constants make the energy "
-                                    "released by a crack non-positive; give "
+                                    "the elastic constants make the work of "
+                                    "separation non-positive; give "
                                     "'Critical stretch' instead"));
         return std::sqrt(G0 / (horizon * factor));
       }
 
     private:
-      /**
-       * \f$(I_1, I_2)\f$: the integrals over the depth ζ of the share f(ζ)
-       * of the weighted volume held by the bonds that cross a plane at
-       * depth ζδ, and of its square. 3D: \f$f = \int_\zeta^1 \omega\,
-       * (\rho^4 - \zeta\rho^3)\,d\rho / (2M_4)\f$; 2D: \f$f =
-       * \int_\zeta^1 \omega\,\rho^3 \arccos(\zeta/\rho)\,d\rho /
-       * (\pi M_3)\f$. ρ = ζ + (1 - ζ)t² takes the square-root behaviour of
-       * arccos at ρ = ζ out of the Gauss rule.
-       */
-      std::pair<double, double>
-      crossing_share_integrals() const
-      {
-        const QGauss<1> gauss(64);
-        const double    norm =
-          dim == 3 ? 2 * this->omega->moment(4) : M_PI * this->omega->moment(3);
-        double i1 = 0, i2 = 0;
-        for (unsigned int a = 0; a < gauss.size(); ++a)
-          {
-            const double zeta  = gauss.point(a)[0];
-            double       share = 0;
-            for (unsigned int b = 0; b < gauss.size(); ++b)
-              {
-                const double t        = gauss.point(b)[0];
-                const double rho      = zeta + (1 - zeta) * t * t;
-                const double jacobian = 2 * (1 - zeta) * t;
-                const double shape =
-                  dim == 3 ?
-                    rho * rho * rho * (rho - zeta) :
-                    rho * rho * rho * std::acos(std::min(1., zeta / rho));
-                share +=
-                  gauss.weight(b) * jacobian * this->omega->value(rho) * shape;
-              }
-            share /= norm;
-            i1 += gauss.weight(a) * share;
-            i2 += gauss.weight(a) * share * share;
-          }
-        return {i1, i2};
-      }
-
       double c_bulk  = 0;
       double c_shear = 0;
     };

@@ -11,6 +11,7 @@
 #include <perideal/boundary/boundary_layers.h>
 #include <perideal/problems/node_region.h>
 #include <perideal/problems/quasi_static.h>
+#include <perideal/solvers/dynamic_relaxation.h>
 
 #include <cmath>
 #include <filesystem>
@@ -60,12 +61,18 @@ namespace PeriDEAL
       prm.declare_entry(
         "Nonlinear solver",
         "Newton",
-        Patterns::Selection("Newton"),
+        Patterns::Selection("Newton|dynamic relaxation"),
         "The solver of each equilibrium. 'Newton': with small-strain "
         "kinematics the problem with the current bonds is linear, so "
         "Newton's method is one linear solve ('Linear solver'), "
-        "warm-started from the last step. (Adaptive dynamic relaxation is "
-        "planned, not built.)");
+        "warm-started from the last step. 'dynamic relaxation': adaptive "
+        "dynamic relaxation (Kilic & Madenci 2010) on the matrix-free "
+        "operator, warm-started too, with its own test of convergence "
+        "(subsection 'dynamic relaxation'); it solves no linear system, so "
+        "'Linear solver' has no effect.");
+      prm.enter_subsection("dynamic relaxation");
+      Solvers::DynamicRelaxation::declare_parameters(prm);
+      prm.leave_subsection();
       prm.declare_entry("Kinematics",
                         "small strain",
                         Patterns::Selection("small strain"),
@@ -161,6 +168,12 @@ namespace PeriDEAL
       max_bonds_per_step = prm.get_integer("Maximum bonds per step");
       failure_fraction   = prm.get_double("Complete failure fraction");
       failure.parse_parameters(prm, "quasi-static");
+      use_dynamic_relaxation =
+        prm.get("Nonlinear solver") == "dynamic relaxation";
+      prm.enter_subsection("dynamic relaxation");
+      dynamic_relaxation.parse_parameters(prm,
+                                          "quasi-static/dynamic relaxation/");
+      prm.leave_subsection();
     }
 
 
@@ -337,6 +350,17 @@ namespace PeriDEAL
                             "'Bond breaking = off') writes no "
                             "load-displacement file; give more 'Load "
                             "steps', or remove the entry"});
+      if (use_dynamic_relaxation)
+        unused.push_back({"Linear solver/",
+                          "'quasi-static/Nonlinear solver = dynamic "
+                          "relaxation' solves no linear system (its test of "
+                          "convergence is in 'quasi-static/dynamic "
+                          "relaxation'); remove the entry, or use 'Newton'"});
+      else
+        unused.push_back({section + "dynamic relaxation/",
+                          "'Nonlinear solver = Newton' does not relax; set "
+                          "'Nonlinear solver = dynamic relaxation', or "
+                          "remove the entry"});
       if (simulator.get_analytical_solution() == nullptr)
         unused.push_back({"Analytical solution/Displacement/",
                           "'Analytical solution/Compare with analytical "

@@ -50,6 +50,17 @@ namespace PeriDEAL
       system = simulator.get_boundary_treatment().template make_system<dim>(
         simulator.get_boundary_treatment_name());
       system->setup(context);
+      if (use_dynamic_relaxation)
+        {
+          AssertThrow(
+            system->supports_dynamic_relaxation(),
+            ExcInvalidInput("quasi-static/Nonlinear solver",
+                            "dynamic relaxation",
+                            "the boundary treatment '" +
+                              simulator.get_boundary_treatment_name() +
+                              "' does not offer it yet; use 'Newton'"));
+          system->set_dynamic_relaxation(&dynamic_relaxation);
+        }
       if (breaking)
         {
           // The horizon is known from here on.
@@ -136,14 +147,16 @@ namespace PeriDEAL
           if (!error.empty())
             {
               AssertThrow(can_cut,
-                          ExcMessage(
-                            "Load step " + std::to_string(step + 1) +
-                            " to t = " + format_number(t_try) +
-                            " did not converge at the minimum load step " +
-                            format_number(minimum_step) +
-                            " ('quasi-static/Minimum load step'). The "
-                            "solver said:\n" +
-                            error));
+                          ExcInvalidInput(
+                            "quasi-static/Minimum load step",
+                            format_number(minimum_step),
+                            "load step " + std::to_string(step + 1) +
+                              " to t = " + format_number(t_try) +
+                              " did not converge and cannot be cut "
+                              "further; lower 'Minimum load step' (0: the "
+                              "first step / 1024) or loosen the solver. The "
+                              "solver said:\n" +
+                              error));
               cut_step();
               continue;
             }
@@ -173,6 +186,26 @@ namespace PeriDEAL
                   cut_step();
                   continue;
                 }
+              // At the minimum step the load at which bonds break cannot
+              // be resolved as asked: stop rather than go on with it
+              // (over is a sum over all processes: all of them stop).
+              AssertThrow(
+                !overshoot && !too_many,
+                ExcInvalidInput(
+                  "quasi-static/Minimum load step",
+                  format_number(minimum_step),
+                  "load step " + std::to_string(step + 1) +
+                    " to t = " + format_number(t_try) +
+                    " cannot be cut further, and " + std::to_string(over) +
+                    " bonds are past their critical stretch at its first "
+                    "equilibrium (" +
+                    (overshoot ?
+                       "some by more than 'Critical stretch tolerance' = " +
+                         format_number(stretch_tolerance) :
+                       "more than 'Maximum bonds per step' = " +
+                         std::to_string(max_bonds_per_step)) +
+                    "). Lower 'Minimum load step' (0: the first step / "
+                    "1024), or relax the tolerance"));
               // Sweeps at this load until no bond breaks.
               while (true)
                 {

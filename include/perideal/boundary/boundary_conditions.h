@@ -243,6 +243,8 @@ namespace PeriDEAL
       std::vector<bool>               dirichlet_components;
       std::vector<BoundingBox<dim>>   dirichlet_boxes;
       std::string                     dirichlet_boxes_text;
+      /// 'Dirichlet displacement/Function expression', for messages.
+      std::string                     dirichlet_expression_text;
       double                          layer_thickness      = 1;
       std::string                     layer_thickness_text = "1";
       std::vector<types::boundary_id> traction_ids;

@@ -11,6 +11,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/io/solution_output.h>
+#include <perideal/solvers/dynamic_relaxation.h>
 #include <perideal/solvers/linear_solver.h>
 
 #include <functional>
@@ -122,6 +123,19 @@ namespace PeriDEAL
       setup_failure(const SystemContext<dim>  &context,
                     const std::vector<double> &critical_stretch,
                     const CutBonds            &cut);
+
+      /// Whether solve_step() can use adaptive dynamic relaxation (false by
+      /// default).
+      virtual bool
+      supports_dynamic_relaxation() const;
+
+      /**
+       * Let solve_step() relax with @p solver (owned by the caller; nullptr:
+       * back to the linear solver of the context). Only where
+       * supports_dynamic_relaxation().
+       */
+      virtual void
+      set_dynamic_relaxation(const Solvers::DynamicRelaxation *solver);
 
       /**
        * Equilibrium with the bonds intact now, at the boundary conditions

@@ -64,6 +64,18 @@ namespace PeriDEAL
       std::size_t
       count_critical_bonds(const double factor) override;
 
+      bool
+      supports_dynamic_relaxation() const override
+      {
+        return true;
+      }
+
+      void
+      set_dynamic_relaxation(const Solvers::DynamicRelaxation *solver) override
+      {
+        dynamic_relaxation = solver;
+      }
+
       std::size_t
       break_critical_bonds(const double factor) override;
 
@@ -154,6 +166,10 @@ namespace PeriDEAL
       std::vector<double> critical_stretch;
       /// Owned nodes held because all their bonds broke.
       unsigned int n_isolated = 0;
+      /// solve_step() relaxes with this solver instead of the linear one
+      /// when set (on the matrix-free operator, which it then builds
+      /// whatever 'Linear solver/Operator' says).
+      const Solvers::DynamicRelaxation *dynamic_relaxation = nullptr;
     };
   } // namespace Boundary
 } // namespace PeriDEAL

@@ -7,6 +7,7 @@
 #include <perideal/problems/bond_failure.h>
 #include <perideal/problems/problem_type.h>
 #include <perideal/problems/simulator.h>
+#include <perideal/solvers/dynamic_relaxation.h>
 
 #include <vector>
 
@@ -93,12 +94,13 @@ namespace PeriDEAL
         most_critical
       };
 
-      /// Whether the run steps the load (more than one step, or bond
-      /// breaking).
+      /// Whether the run steps the load (more than one step, bond
+      /// breaking, or dynamic relaxation, which only solve_step() offers).
       bool
       steps_load() const
       {
-        return n_load_steps > 1 || bond_breaking != BondBreaking::off;
+        return n_load_steps > 1 || bond_breaking != BondBreaking::off ||
+               use_dynamic_relaxation;
       }
 
       /// The load-stepped run (quasi_static_steps.cc).
@@ -170,6 +172,9 @@ namespace PeriDEAL
       std::string                     load_displacement_file;
       /// Pre-cracks and no-fail regions.
       BondFailure<dim> failure;
+      /// 'Nonlinear solver = dynamic relaxation' and its settings.
+      bool                       use_dynamic_relaxation = false;
+      Solvers::DynamicRelaxation dynamic_relaxation;
 
       // State of a load-stepped run.
       /// Rows of the load-displacement CSV: step, time, reaction, broken

@@ -1,0 +1,44 @@
+"""Plots of bench/run_centre_crack.sh: the gap to LEFM against wall time,
+and wall time against the number of nodes, per model and solver."""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+rows = list(csv.DictReader(open(sys.argv[1])))
+out = sys.argv[2]
+series = {}
+for r in rows:
+    series.setdefault((r["model"], r["solver"]), []).append(r)
+
+fig, ax = plt.subplots(figsize=(6, 4.5))
+for (model, solver), rs in series.items():
+    ax.plot([float(r["wall_seconds"]) for r in rs],
+            [abs(float(r["gap_percent"])) for r in rs], "o-",
+            label=f"{model}, {solver}")
+    for r in rs:
+        ax.annotate(r["cells"] + "²", (float(r["wall_seconds"]),
+                    abs(float(r["gap_percent"]))), fontsize=7)
+ax.axhline(5, color="grey", ls="--", lw=0.8)
+ax.set_xscale("log")
+ax.set_xlabel("wall time [s] (1 process)")
+ax.set_ylabel("|initiation load / LEFM - 1| [%]")
+ax.set_title("Centre-cracked plate: gap to LEFM")
+ax.legend(fontsize=7)
+fig.tight_layout()
+fig.savefig(f"{out}/error_vs_time.png", dpi=150)
+
+fig, ax = plt.subplots(figsize=(6, 4.5))
+for (model, solver), rs in series.items():
+    ax.loglog([int(r["nodes"]) for r in rs],
+              [float(r["wall_seconds"]) for r in rs], "o-",
+              label=f"{model}, {solver}")
+ax.set_xlabel("nodes")
+ax.set_ylabel("wall time [s] to complete failure")
+ax.set_title("Centre-cracked plate: time against size")
+ax.legend(fontsize=7)
+fig.tight_layout()
+fig.savefig(f"{out}/time_vs_size.png", dpi=150)

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Usage: bad_input.sh PERIDEAL [GROUP]
+#
+# Kind of test: bad input. Bad input to load-stepped quasi-static fracture
+# (issue 24): each case must exit non-zero on 1 and on 2 processes (without
+# hanging), print a message that names the offending entry, its value and
+# the fix, and leave no output that looks complete (the load-displacement
+# CSV and the PVD record are removed with the rest of out/). The cases edit
+# bad_input/base.prm, a 20 x 20 centre-cracked plate that runs to failure
+# in about a second. GROUP: a function group_<name> below (each is a ctest
+# of its own), or 'all' (the default).
+set -u
+perideal="$1"; group="${2:-all}"
+here="$(cd "$(dirname "$0")" && pwd)"
+. "$here/../bad_input_checks.sh"
+left_behind="out/solution.pvd out/load_displacement.csv"
+enter_work "bad_input.$group"
+cp "$here/bad_input/base.prm" base.prm
+
+# The valid input runs; the load path: load steps and end time.
+group_load_path() {
+  expect_valid 1 base.prm "the valid base input" out/solution.pvd out/load_displacement.csv
+  rm -rf out
+  for np in 1 2; do
+    expect_error 's/set Load steps = 10/set Load steps = 0/' \
+      "Invalid value '0' for the parameter 'quasi-static/Load steps': give at least 1 step" $np
+    expect_error 's/set End time = 1/set End time = 0/' \
+      "Invalid value '0' for the parameter 'quasi-static/End time': give a time > 0" $np
+  done
+  expect_error 's/set Load steps = 10/set Load steps = -3/' \
+    "Invalid value '-3' for the parameter 'quasi-static/Load steps': give at least 1 step"
+  expect_error 's/set End time = 1/set End time = -1/' \
+    "Invalid value '-1' for the parameter 'quasi-static/End time': give a time > 0"
+}
+
+# Runs that cannot give the answer asked for: a load that never reaches the
+# critical stretch (the largest stretch is reported instead of looping),
+# step cutting below the minimum (the step and the load named; here at the
+# second step), NaN in the prescribed displacement at the second step, no
+# critical stretch, a reaction boundary that nothing holds.
+group_during_run() {
+  for np in 1 2; do
+    expect_error 's/set End time = 1/set End time = 0.01/' \
+      "Invalid value '0.01' for the parameter 'quasi-static/End time': 'Bond breaking = all beyond critical', but no bond reached its critical stretch up to t = 0.01: the largest stretch is 0.149" $np
+    expect_error 's/set End time = 1/set End time = 1\n  set Minimum load step = 0.05/' \
+      "Invalid value '0.05' for the parameter 'quasi-static/Minimum load step': load step 2 to t = 0.1 cannot be cut further, and 45 bonds are past their critical stretch" $np
+    expect_error 's/2e-5\*t\*sign(y)/2e-5*t*sign(y) + 0*sqrt(0.08-t)/; s/set Load steps = 10/set Load steps = 20/' \
+      "Invalid value '0; 2e-5*t*sign(y) + 0*sqrt(0.08-t)' for the parameter 'Boundary conditions/Dirichlet displacement/Function expression': component 1 is -nan at the node (-0.0475 -0.0475) at t = 0.1" $np
+    expect_error 's/    set Fracture energy = 3.8//' \
+      "Invalid value 'all beyond critical' for the parameter 'quasi-static/Bond breaking': the material model has no critical stretch, so no bond can break" $np
+    expect_error 's/set Reaction boundary ids = 3/set Reaction boundary ids = 1/' \
+      "Invalid value '1' for the parameter 'quasi-static/Reaction boundary ids': boundary id 1 has no Dirichlet layer, so nothing holds it and it has no reaction" $np
+  done
+  expect_error 's/set Reaction boundary ids = 3/set Reaction boundary ids = 7/' \
+    "Invalid value '7' for the parameter 'quasi-static/Reaction boundary ids': boundary id 7 has no Dirichlet layer"
+}
+
+# 'Nonlinear solver = dynamic relaxation': the entries it does not use, its
+# own entries under Newton, a bad tolerance, too few iterations (a solve
+# that fails down to the minimum load step), a boundary treatment without
+# it.
+group_dynamic_relaxation() {
+  local dr='s/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  set Nonlinear solver = dynamic relaxation/'
+  local dr_only="$dr"'; /subsection Linear solver/,/^end/d'
+  sed "$dr_only" base.prm > relax.prm
+  expect_valid 2 relax.prm "dynamic relaxation" out/solution.pvd out/load_displacement.csv
+  rm -rf out
+  for np in 1 2; do
+    expect_error "$dr" \
+      "Invalid value 'CG' for the parameter 'Linear solver/Method': this entry has no effect here: 'quasi-static/Nonlinear solver = dynamic relaxation' solves no linear system" $np
+    expect_error "$dr_only"'; s/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  subsection dynamic relaxation\n    set Maximum iterations = 20\n  end/' \
+      "Invalid value '9.765625e-05' for the parameter 'quasi-static/Minimum load step': load step 1 to t = 9.765625e-05 did not converge and cannot be cut further" $np
+  done
+  expect_error "$dr_only"'; s/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  subsection dynamic relaxation\n    set Relative tolerance = 0\n  end/' \
+    "Invalid value '0' for the parameter 'quasi-static/dynamic relaxation/Relative tolerance': give a tolerance in (0, 1)"
+  expect_error 's/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  subsection dynamic relaxation\n    set Maximum iterations = 20\n  end/' \
+    "Invalid value '20' for the parameter 'quasi-static/dynamic relaxation/Maximum iterations': this entry has no effect here: 'Nonlinear solver = Newton' does not relax"
+  expect_error 's/  set No-fail boundary ids = 2, 3/  set Nonlinear solver = dynamic relaxation/; /subsection Linear solver/,/^end/d; s/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/; s/set Bond breaking = all beyond critical/set Bond breaking = off/; /Pre-cracks/d; /Fracture energy/d; /Reaction boundary/d' \
+    "Invalid value 'dynamic relaxation' for the parameter 'quasi-static/Nonlinear solver': the boundary treatment 'surface nodes' does not offer it yet"
+}
+
+run_case_group "$group"
+finish "all bad inputs rejected with clear messages"
