@@ -35,6 +35,13 @@
 #          per unit thickness in 2D) must lie in [low, high] at every row
 #          once the tip has advanced min_advance (the first broken bonds
 #          ahead of the tip are not yet a crack);
+#      # check: lefm_initiation_ramp <a> <b> <E'> <G0> <stress rate> <tolerance>
+#          (fracture mechanics) a centre crack of half-length a in a strip
+#          of half-width b under a remote stress rate * t, ramped slowly:
+#          at the first energy row with more broken bonds than the first
+#          row, rate * t must be sigma_c = sqrt(E' G0) / (F sqrt(pi a))
+#          within the relative tolerance, F = sqrt(sec(pi a / (2 b)))
+#          (Feddersen, as tests/fracture/run_fracture.sh);
 #      # check: verlet_energy_order <n_steps> [<every>]
 #          (on 1 process) over the first n_steps steps, before any bond
 #          breaks beyond the pre-crack (asserted), the balance moves only by
@@ -123,6 +130,17 @@ if [ -n "$speed" ]; then
           printf "fastest tip advance %.4g m/s (at t = %g), %.3f of the Rayleigh speed %.4g m/s (c_d %.4g, c_s %.4g)\n", vmax, at, vmax / c, c, sqrt(cd2), sqrt(cs2)
           exit !(vmax > 0 && vmax < c) }' "$csv" \
     || { echo "FAIL: the crack tip outran the Rayleigh speed (or never moved)"; exit 1; }
+fi
+
+ramp=$(sed -n 's/^# check: lefm_initiation_ramp *//p' input.prm)
+if [ -n "$ramp" ]; then
+  awk -F, -v spec="$ramp" 'NR == 2 { b0 = $7 } NR > 2 && !found && $7 > b0 { found = 1; t = $1 }
+    END { split(spec, p, " "); a = p[1]; b = p[2]; E = p[3]; G = p[4]; rate = p[5]; tol = p[6]
+          pi = atan2(0, -1); F = sqrt(1 / cos(pi * a / (2 * b)))
+          lefm = sqrt(E * G) / (F * sqrt(pi * a)); s = rate * t
+          printf "bonds first break at t = %g under sigma = %.5g; LEFM (Feddersen F = %.4f) %.5g: %+.2f %% (tolerance %g %%)\n", t, s, F, lefm, 100 * (s / lefm - 1), 100 * tol
+          d = s / lefm - 1; if (d < 0) d = -d; exit !(found && d <= tol) }' "$csv" \
+    || { echo "FAIL: initiation under the slow ramp against LEFM"; exit 1; }
 fi
 
 dissipation=$(sed -n 's/^# check: dissipation_per_crack_length *//p' input.prm)
