@@ -19,8 +19,9 @@
 # overrides the cells per side (default 50 100 200; --quick: 30 50), DR_SIZES
 # those of the dynamic-relaxation runs (PMB only; default 50 100 200;
 # --quick: 30), M_STUDY the m study at delta = 3 mm (pairs m:cells, default
-# '4:134 6:200', beside the m = 3 runs at 100^2: even counts, so that the
-# pre-crack runs between node rows; --quick: none) for
+# '4:130 6:200', beside the m = 3 runs at 100^2: multiples of 10, so that
+# the pre-crack runs between node rows and its tips lie midway between
+# node columns, as at m = 3; --quick: none) for
 # M_MODELS (default pmb_plane_stress lps_plane_stress). Fails unless every
 # model is within 5 % of LEFM at the finest grid at m = 3 and dynamic
 # relaxation breaks the same bonds at every step as Newton.
@@ -34,7 +35,7 @@ if [ $quick -eq 1 ]; then
   sizes="${SIZES:-30 50}"; dr_sizes="${DR_SIZES-30}"; m_study="${M_STUDY-}"
 else
   sizes="${SIZES:-50 100 200}"; dr_sizes="${DR_SIZES-50 100 200}"
-  m_study="${M_STUDY-4:134 6:200}"
+  m_study="${M_STUDY-4:130 6:200}"
 fi
 m_models="${M_MODELS:-pmb_plane_stress lps_plane_stress}"
 
