@@ -418,16 +418,19 @@ namespace PeriDEAL
       const auto                layer =
         BoundaryLayers<dim>(dof_handler.get_triangulation(), dirichlet_ids)
           .layer_of_nodes(nodes, thickness, &nodes_of_id);
-      // Which boxes hold each node, one box at a time, so that each box
-      // prescribes its own components (every box must hold a node).
-      std::vector<std::vector<bool>> in_box;
-      for (const auto &box : dirichlet_boxes)
-        in_box.push_back(
-          Discretization::nodes_in_boxes(nodes,
-                                         std::vector<BoundingBox<dim>>{box},
-                                         "Boundary conditions/Dirichlet boxes",
-                                         dirichlet_boxes_text,
-                                         "prescribes nothing"));
+      // Every box must hold a node (checked over all processes, naming the
+      // box); then which boxes hold each node, so that each box prescribes
+      // its own components.
+      Discretization::nodes_in_boxes(nodes,
+                                     dirichlet_boxes,
+                                     "Boundary conditions/Dirichlet boxes",
+                                     dirichlet_boxes_text,
+                                     "prescribes nothing");
+      std::vector<std::vector<bool>> in_box(dirichlet_boxes.size(),
+                                            std::vector<bool>(nodes.size()));
+      for (unsigned int k = 0; k < dirichlet_boxes.size(); ++k)
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          in_box[k][i] = dirichlet_boxes[k].point_inside(nodes[i].location);
       Vector<double>    g(dim);
       std::string       non_finite;
       std::vector<bool> prescribed(dim);

@@ -421,19 +421,19 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         flagged[i] = layer[i] != numbers::invalid_unsigned_int &&
                      system->is_constrained(nodes[i]);
-      // The boxes: each must hold prescribed nodes, counted over all
-      // processes, so that every process throws alike.
-      for (const auto &box : reaction_boxes)
+      // The boxes: each must hold a node and prescribed nodes, counted over
+      // all processes, so that every process throws alike.
+      Discretization::nodes_in_boxes(nodes,
+                                     reaction_boxes,
+                                     "quasi-static/Reaction boxes",
+                                     reaction_boxes_text,
+                                     "has no reaction");
+      for (unsigned int k = 0; k < reaction_boxes.size(); ++k)
         {
-          const auto in_box =
-            Discretization::nodes_in_boxes(nodes,
-                                           std::vector<BoundingBox<dim>>{box},
-                                           "quasi-static/Reaction boxes",
-                                           reaction_boxes_text,
-                                           "has no reaction");
           unsigned int n_held = 0;
           for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-            if (in_box[i] && system->is_constrained(nodes[i]))
+            if (reaction_boxes[k].point_inside(nodes[i].location) &&
+                system->is_constrained(nodes[i]))
               {
                 flagged[i] = true;
                 ++n_held;
@@ -442,11 +442,12 @@ namespace PeriDEAL
                                           simulator.get_communicator()) > 0,
                       ExcInvalidInput("quasi-static/Reaction boxes",
                                       reaction_boxes_text,
-                                      "a box holds no prescribed node, so "
-                                      "nothing holds it and it has no "
-                                      "reaction; make each box cover nodes "
-                                      "of 'Boundary conditions/Dirichlet "
-                                      "boxes' or Dirichlet layers"));
+                                      "box " + std::to_string(k + 1) +
+                                        " holds no prescribed node, so "
+                                        "nothing holds it and it has no "
+                                        "reaction; make each box cover nodes "
+                                        "of 'Boundary conditions/Dirichlet "
+                                        "boxes' or Dirichlet layers"));
         }
       return flagged;
     }
