@@ -12,15 +12,21 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 out = sys.argv[2]
 series = {}
 for r in rows:
+    # The refinement at m = 3, and the m study at fixed delta / a (its
+    # m = 3 point is the 100^2 run of the refinement).
     series.setdefault((r["model"], r["solver"]), []).append(r)
+    if r["solver"] == "newton" and (r["m"] != "3" or r["cells"] == "100"):
+        series.setdefault((r["model"], "m study"), []).append(r)
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
 for (model, solver), rs in series.items():
+    if solver != "m study":
+        rs = [r for r in rs if r["m"] == "3"]
     ax.plot([float(r["wall_seconds"]) for r in rs],
             [abs(float(r["gap_percent"])) for r in rs], "o-",
             label=f"{model}, {solver}")
     for r in rs:
-        ax.annotate(r["cells"] + "²", (float(r["wall_seconds"]),
+        ax.annotate(r["cells"] + "², m = " + r["m"], (float(r["wall_seconds"]),
                     abs(float(r["gap_percent"]))), fontsize=7)
 ax.axhline(5, color="grey", ls="--", lw=0.8)
 ax.set_xscale("log")
@@ -33,6 +39,9 @@ fig.savefig(f"{out}/error_vs_time.png", dpi=150)
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
 for (model, solver), rs in series.items():
+    if solver == "m study":
+        continue
+    rs = [r for r in rs if r["m"] == "3"]
     ax.loglog([int(r["nodes"]) for r in rs],
               [float(r["wall_seconds"]) for r in rs], "o-",
               label=f"{model}, {solver}")

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Centre-cracked plate in tension, quasi-static to failure (issue 24): the
-# load at which bonds first break beyond the pre-crack against LEFM,
+# load at which bonds first break beyond the pre-crack (the first
+# equilibrium of that step, before any bond breaks) against LEFM,
 # sigma_c = sqrt(E' G0) / (F sqrt(pi a)) with Feddersen's F = sqrt(sec(pi a /
 # 2b)), as the grid (and with it delta = 3h) is refined at fixed m = 3; and
 # the same problem with adaptive dynamic relaxation against Newton (CG with
@@ -11,14 +12,19 @@
 # The inputs are those of tests/fracture (0.1 x 0.1 m plate, a = 0.01,
 # G0 = 3.8 J/m^2, E = 72 GPa): PMB in plane stress, LPS in plane stress at
 # nu = 0.2 and in plane strain at nu = 0.3. Writes DIR/centre_crack.csv
-# (model, solver, cells per side, delta/a, nodes, the initiation reaction,
+# (model, solver, cells per side, m, delta/a, nodes, the initiation reaction,
 # LEFM's, the gap in %, the peak reaction, wall time, steps, Krylov or
 # relaxation iterations), DIR/logs/ and with matplotlib DIR/error_vs_time.png
 # and DIR/time_vs_size.png. DIR defaults to results/centre_crack. SIZES
 # overrides the cells per side (default 50 100 200; --quick: 30 50), DR_SIZES
 # those of the dynamic-relaxation runs (PMB only; default 50 100 200;
-# --quick: 30). Fails unless every model is within 5 % of LEFM at the finest
-# grid and dynamic relaxation breaks the same bonds at every step as Newton.
+# --quick: 30), M_STUDY the m study at delta = 3 mm (pairs m:cells, default
+# '4:130 6:200', beside the m = 3 runs at 100^2: multiples of 10, so that
+# the pre-crack runs between node rows and its tips lie midway between
+# node columns, as at m = 3; --quick: none) for
+# M_MODELS (default pmb_plane_stress lps_plane_stress). Fails unless every
+# model is within 5 % of LEFM at the finest grid at m = 3 and dynamic
+# relaxation breaks the same bonds at every step as Newton.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,61 +32,71 @@ source bench/driver_study.sh
 driver_study_setup results/centre_crack "$@"
 
 if [ $quick -eq 1 ]; then
-  sizes="${SIZES:-30 50}"; dr_sizes="${DR_SIZES:-30}"
+  sizes="${SIZES:-30 50}"; dr_sizes="${DR_SIZES-30}"; m_study="${M_STUDY-}"
 else
-  sizes="${SIZES:-50 100 200}"; dr_sizes="${DR_SIZES:-50 100 200}"
+  sizes="${SIZES:-50 100 200}"; dr_sizes="${DR_SIZES-50 100 200}"
+  m_study="${M_STUDY-4:130 6:200}"
 fi
+m_models="${M_MODELS:-pmb_plane_stress lps_plane_stress}"
 
 csv="$out/centre_crack.csv"
-echo "model,solver,cells,delta_over_a,nodes,reaction_initiation,reaction_lefm,gap_percent,reaction_peak,wall_seconds,steps,iterations" > "$csv"
+echo "model,solver,cells,m,delta_over_a,nodes,reaction_initiation,reaction_lefm,gap_percent,reaction_peak,wall_seconds,steps,iterations" > "$csv"
 
-# run MODEL SOLVER N: one run, one CSV row.
+# run MODEL SOLVER N [M]: one run (N cells per side, m-ratio M, default 3),
+# one CSV row.
 run() {
-  local model="$1" solver="$2" n="$3"
+  local model="$1" solver="$2" n="$3" m="${4:-3}"
   local base="tests/fracture/centre_crack_${model}.prm"
   local name="${model}_${solver}_${n}"
+  [ "$m" = 3 ] || name="${name}_m$m"
   local prm="$out/logs/$name.prm" log="$out/logs/$name.log"
   sed -e "s/set Subdivisions = 50, 50/set Subdivisions = $n, $n/" \
+      -e "s/set m-ratio = 3/set m-ratio = $m/" \
       -e "s|set Directory = output|set Directory = $out/logs/$name|" "$base" > "$prm"
   if [ "$solver" = dynamic_relaxation ]; then
     sed -i -e '/subsection Linear solver/,/^end/d' \
       -e 's/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  set Nonlinear solver = dynamic relaxation/' "$prm"
   fi
-  printf '%-24s %-18s %4s^2: ' "$model" "$solver" "$n"
+  printf '%-24s %-18s %4s^2, m = %s: ' "$model" "$solver" "$n" "$m"
   "$perideal" "$prm" > "$log" 2>&1 || { tail -20 "$log"; exit 1; }
   local wall lefm
   wall=$(sed -n 's/^total wall time \([0-9.e+-]*\) s.*/\1/p' "$log")
   lefm=$(sed -n 's/^# check: lefm_initiation *//p' "$prm")
-  awk -F, -v spec="$lefm" -v model="$model" -v solver="$solver" -v n="$n" -v wall="$wall" '
-    NR == 2 { b0 = $5 }
+  awk -F, -v spec="$lefm" -v model="$model" -v solver="$solver" -v n="$n" -v m="$m" -v wall="$wall" '
+    NR == 2 { b0 = $5; k = $4 / $2 }
     NR > 1 { it += $6; steps++; r = $4 < 0 ? -$4 : $4; if (r > peak) peak = r
-             if (!found && $5 > b0) { found = 1; init = $4 } }
+             if (!found && $5 > b0) { found = 1; init = k * $2 } }
     END { split(spec, p, " "); a = p[1]; b = p[2]; E = p[3]; G = p[4]
           pi = atan2(0, -1); F = sqrt(1 / cos(pi * a / (2 * b)))
           lefm = sqrt(E * G) / (F * sqrt(pi * a)) * 2 * b
           h = 2 * b / n; gap = 100 * (init / lefm - 1)
-          printf "%s,%s,%d,%.4g,%d,%.6g,%.6g,%.3f,%.6g,%s,%d,%d\n", model, solver, n, 3 * h / a, n * n, init, lefm, gap, peak, wall, steps, it }' \
-    "$out/logs/$name/load_displacement.csv" | tee -a "$csv" | awk -F, '{ printf "initiation %s (LEFM %s, %+.2f %%), %s s\n", $6, $7, $8, $10 }'
+          printf "%s,%s,%d,%d,%.4g,%d,%.6g,%.6g,%.3f,%.6g,%s,%d,%d\n", model, solver, n, m, m * h / a, n * n, init, lefm, gap, peak, wall, steps, it }' \
+    "$out/logs/$name/load_displacement.csv" | tee -a "$csv" | awk -F, '{ printf "initiation %s (LEFM %s, %+.2f %%), %s s\n", $7, $8, $9, $11 }'
 }
 
 for model in pmb_plane_stress lps_plane_stress lps_plane_strain; do
   for n in $sizes; do run "$model" newton "$n"; done
 done
 for n in $dr_sizes; do run pmb_plane_stress dynamic_relaxation "$n"; done
+# The m study: delta / a = 0.3 held (delta = 3 mm) while m grows, so that
+# the gap left at fixed m is told apart from the gap of a coarse delta.
+for model in $m_models; do
+  for mn in $m_study; do run "$model" newton "${mn#*:}" "${mn%%:*}"; done
+done
 
 # The checks: within 5 % of LEFM at the finest grid; dynamic relaxation on
 # the same steps and broken bonds as Newton.
 finest=$(echo $sizes | tr ' ' '\n' | sort -n | tail -1)
 status=0
-awk -F, -v n="$finest" 'NR > 1 && $2 == "newton" && $3 == n {
-    d = $8 < 0 ? -$8 : $8; printf "%s at %s^2: %+.2f %% of LEFM\n", $1, n, $8; if (d > 5) bad = 1 }
+awk -F, -v n="$finest" 'NR > 1 && $2 == "newton" && $3 == n && $4 == 3 {
+    d = $9 < 0 ? -$9 : $9; printf "%s at %s^2: %+.2f %% of LEFM\n", $1, n, $9; if (d > 5) bad = 1 }
     END { exit bad }' "$csv" || { echo "FAIL: a model is more than 5 % from LEFM at the finest grid"; status=1; }
 for n in $dr_sizes; do
   a="$out/logs/pmb_plane_stress_newton_$n/load_displacement.csv"
   b="$out/logs/pmb_plane_stress_dynamic_relaxation_$n/load_displacement.csv"
   [ -f "$a" ] || continue
   if diff <(cut -d, -f1,2,5 "$a") <(cut -d, -f1,2,5 "$b") > /dev/null; then
-    awk -F, -v n="$n" 'NR > 1 && $1 == "pmb_plane_stress" && $3 == n { t[$2] = $10 }
+    awk -F, -v n="$n" 'NR > 1 && $1 == "pmb_plane_stress" && $3 == n && $4 == 3 { t[$2] = $11 }
       END { printf "%s^2: dynamic relaxation breaks the same bonds at every step; Newton %.3g s, dynamic relaxation %.3g s (%.1fx)\n", n, t["newton"], t["dynamic_relaxation"], t["dynamic_relaxation"] / t["newton"] }' "$csv"
   else
     echo "FAIL: at $n^2 dynamic relaxation and Newton break different bonds"; status=1

@@ -56,12 +56,15 @@ for run in runs:
                      standard_nodes_percent=run.get("standard_nodes_percent",
                                                     "100"),
                      late_switches=run.get("late_switches", "0"),
+                     variant=run.get("variant", "pmb"),
                      broken_bonds=data[-1]["broken_bonds"],
                      final_tip_mm=f"({float(data[-1]['tip_x'])*1e3:.1f}, "
                                   f"{float(data[-1]['tip_y'])*1e3:.1f})"))
     label = f"{run['dim']}D h={h*1e3:g} mm m={m:g} v={run['velocity']}"
     if run.get("scheme", "standard") != "standard":
         label += " " + run["scheme"]
+    if run.get("variant", "pmb") != "pmb":
+        label += " " + run["variant"]
     ax1.plot((x + 0.05) * 1e3, (y + 0.025) * 1e3, ".-", ms=2, label=label)
     ax2.plot(float(run["wall_seconds"]), initial, "o", label=label)
 with open(f"{out}/kalthoff_winkler.csv", "w", newline="") as f:

@@ -132,6 +132,14 @@ namespace PeriDEAL
         "those of the Dirichlet layers: a prescribed region that is not a "
         "layer along a whole face, such as the impact zone of a "
         "Kalthoff-Winkler plate. Empty: none.");
+      prm.declare_entry(
+        "Dirichlet box components",
+        "",
+        Patterns::Anything(),
+        "The displacement components prescribed in each of the 'Dirichlet "
+        "boxes': one list per box, in the order of the boxes, separated by "
+        "';' (e.g. 'x, y; y; y' for a load point held in x and y and two "
+        "rollers). Empty: every box prescribes the 'Dirichlet components'.");
       prm.enter_subsection("Dirichlet displacement");
       Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
       prm.leave_subsection();
@@ -163,6 +171,61 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<std::vector<bool>>
+    BoundaryConditions<dim>::parse_box_components(const std::string &text,
+                                                  const unsigned int n_boxes)
+    {
+      const std::string entry = "Boundary conditions/Dirichlet box components";
+      const std::string names =
+        dim == 1 ? "x" : (dim == 2 ? "x, y" : "x, y, z");
+      std::vector<std::vector<bool>> masks;
+      if (Utilities::trim(text).empty())
+        return masks;
+      AssertThrow(n_boxes > 0,
+                  ExcInvalidInput(entry,
+                                  text,
+                                  "there are no 'Dirichlet boxes', so these "
+                                  "components would prescribe nothing; give "
+                                  "the boxes, or leave the entry empty"));
+      const auto lists = Utilities::split_string_list(text, ';');
+      AssertThrow(lists.size() == n_boxes,
+                  ExcInvalidInput(entry,
+                                  text,
+                                  "it gives " + std::to_string(lists.size()) +
+                                    " component lists for " +
+                                    std::to_string(n_boxes) +
+                                    " Dirichlet boxes; give one list per "
+                                    "box, separated by ';'"));
+      for (const auto &list : lists)
+        {
+          std::vector<bool> mask(dim, false);
+          const auto        words = Utilities::split_string_list(list, ',');
+          AssertThrow(!words.empty(),
+                      ExcInvalidInput(entry,
+                                      text,
+                                      "a box with no component prescribes "
+                                      "nothing; name its components (" +
+                                        names + ")"));
+          for (const auto &w : words)
+            {
+              AssertThrow(w.size() == 1 && w[0] >= 'x' &&
+                            w[0] < static_cast<char>('x' + dim),
+                          ExcInvalidInput(entry,
+                                          text,
+                                          "'" + w +
+                                            "' is not a displacement "
+                                            "component of this " +
+                                            std::to_string(dim) +
+                                            "D run; use " + names));
+              mask[w[0] - 'x'] = true;
+            }
+          masks.push_back(mask);
+        }
+      return masks;
+    }
+
+
+    template <int dim>
     void
     BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
     {
@@ -187,6 +250,10 @@ namespace PeriDEAL
       dirichlet_boxes =
         Discretization::parse_boxes<dim>(dirichlet_boxes_text,
                                          "Boundary conditions/Dirichlet boxes");
+      dirichlet_box_components_text = prm.get("Dirichlet box components");
+      dirichlet_box_components =
+        parse_box_components(dirichlet_box_components_text,
+                             dirichlet_boxes.size());
       AssertThrow(!components.empty() ||
                     (dirichlet_ids.empty() && dirichlet_boxes.empty()),
                   ExcInvalidInput("Boundary conditions/Dirichlet components",
@@ -351,22 +418,43 @@ namespace PeriDEAL
       const auto                layer =
         BoundaryLayers<dim>(dof_handler.get_triangulation(), dirichlet_ids)
           .layer_of_nodes(nodes, thickness, &nodes_of_id);
-      const auto in_box =
-        Discretization::nodes_in_boxes(nodes,
-                                       dirichlet_boxes,
-                                       "Boundary conditions/Dirichlet boxes",
-                                       dirichlet_boxes_text,
-                                       "prescribes nothing");
-      Vector<double> g(dim);
-      std::string    non_finite;
+      // Every box must hold a node (checked over all processes, naming the
+      // box); then which boxes hold each node, so that each box prescribes
+      // its own components.
+      Discretization::nodes_in_boxes(nodes,
+                                     dirichlet_boxes,
+                                     "Boundary conditions/Dirichlet boxes",
+                                     dirichlet_boxes_text,
+                                     "prescribes nothing");
+      std::vector<std::vector<bool>> in_box(dirichlet_boxes.size(),
+                                            std::vector<bool>(nodes.size()));
+      for (unsigned int k = 0; k < dirichlet_boxes.size(); ++k)
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          in_box[k][i] = dirichlet_boxes[k].point_inside(nodes[i].location);
+      Vector<double>    g(dim);
+      std::string       non_finite;
+      std::vector<bool> prescribed(dim);
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
           const auto &node = nodes[i];
-          if (layer[i] == numbers::invalid_unsigned_int && !in_box[i])
+          bool        any  = false;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              prescribed[c] = layer[i] != numbers::invalid_unsigned_int &&
+                              dirichlet_components[c];
+              for (unsigned int k = 0; k < dirichlet_boxes.size(); ++k)
+                if (in_box[k][i])
+                  prescribed[c] =
+                    prescribed[c] || (dirichlet_box_components.empty() ?
+                                        dirichlet_components[c] :
+                                        dirichlet_box_components[k][c]);
+              any = any || prescribed[c];
+            }
+          if (!any)
             continue;
           dirichlet_displacement->vector_value(node.location, g);
           for (unsigned int c = 0; c < dim; ++c)
-            if (dirichlet_components[c])
+            if (prescribed[c])
               {
                 if (!std::isfinite(g[c]) && non_finite.empty())
                   {

@@ -89,6 +89,15 @@ namespace PeriDEAL
         "on them (per unit thickness in 2D). Each id must be one of "
         "'Boundary conditions/Dirichlet boundary ids'.");
       prm.declare_entry(
+        "Reaction boxes",
+        "",
+        Patterns::Anything(),
+        "Boxes 'xmin, ymin[, zmin], xmax, ymax[, zmax]' (several separated "
+        "by ';') whose prescribed nodes (those of 'Boundary "
+        "conditions/Dirichlet boxes' or Dirichlet layers) add their "
+        "reaction to that of the 'Reaction boundary ids': the load point "
+        "of a beam in bending, say. Empty: none.");
+      prm.declare_entry(
         "Load-displacement file",
         "load_displacement.csv",
         Patterns::FileName(Patterns::FileName::output),
@@ -144,15 +153,19 @@ namespace PeriDEAL
                   ExcInvalidInput("quasi-static/Load steps",
                                   prm.get("Load steps"),
                                   "give at least 1 step"));
-      n_load_steps           = static_cast<unsigned int>(steps);
-      bond_breaking_name     = prm.get("Bond breaking");
-      bond_breaking          = bond_breaking_name == "off" ?
-                                 BondBreaking::off :
-                               bond_breaking_name == "most critical" ?
-                                 BondBreaking::most_critical :
-                                 BondBreaking::all_beyond_critical;
-      reaction_ids_text      = prm.get("Reaction boundary ids");
-      reaction_ids           = Boundary::parse_boundary_ids(reaction_ids_text);
+      n_load_steps        = static_cast<unsigned int>(steps);
+      bond_breaking_name  = prm.get("Bond breaking");
+      bond_breaking       = bond_breaking_name == "off" ?
+                              BondBreaking::off :
+                            bond_breaking_name == "most critical" ?
+                              BondBreaking::most_critical :
+                              BondBreaking::all_beyond_critical;
+      reaction_ids_text   = prm.get("Reaction boundary ids");
+      reaction_ids        = Boundary::parse_boundary_ids(reaction_ids_text);
+      reaction_boxes_text = prm.get("Reaction boxes");
+      reaction_boxes =
+        Discretization::parse_boxes<dim>(reaction_boxes_text,
+                                         "quasi-static/Reaction boxes");
       load_displacement_file = prm.get("Load-displacement file");
       minimum_step           = prm.get_double("Minimum load step");
       const double largest   = end_time / n_load_steps;
@@ -335,16 +348,18 @@ namespace PeriDEAL
         {
           for (auto &entry : failure.unused_entries())
             unused.push_back(entry);
-          if (reaction_ids.empty())
+          if (!has_reaction())
             unused.push_back({section + "Complete failure fraction",
                               "complete failure is told by the reaction, and "
-                              "no 'Reaction boundary ids' are given; give "
-                              "them, or remove the entry"});
+                              "no 'Reaction boundary ids' or 'Reaction "
+                              "boxes' are given; give them, or remove the "
+                              "entry"});
         }
       if (!steps_load())
         for (const char *entry : {"Load-displacement file",
                                   "Minimum load step",
-                                  "Reaction boundary ids"})
+                                  "Reaction boundary ids",
+                                  "Reaction boxes"})
           unused.push_back({section + entry,
                             "one solve at 'End time' ('Load steps = 1', "
                             "'Bond breaking = off') writes no "

@@ -165,9 +165,14 @@ namespace PeriDEAL
           std::size_t    new_bonds  = 0;
           std::size_t    over       = 0;
           Tensor<1, dim> reaction;
-          if (flagged.empty() && !reaction_ids.empty())
-            flagged = reaction_nodes(simulator);
-          if (!reaction_ids.empty())
+          // Found once, on the first converged step, by every process at
+          // once (a process may own no node).
+          if (!reaction_nodes_found && has_reaction())
+            {
+              flagged              = reaction_nodes(simulator);
+              reaction_nodes_found = true;
+            }
+          if (has_reaction())
             reaction = system->holding_force(context, flagged);
           const Tensor<1, dim> load_before = reaction;
 
@@ -226,7 +231,7 @@ namespace PeriDEAL
                                 "path). The solver said:\n" +
                                 error));
                   iterations += context.summary.solver.iterations;
-                  if (!reaction_ids.empty())
+                  if (has_reaction())
                     {
                       reaction = system->holding_force(context, flagged);
                       if (failure_fraction > 0 && peak > 0 &&
@@ -250,7 +255,7 @@ namespace PeriDEAL
                         << "): " << new_bonds - over
                         << " bonds broke at a fixed load after the " << over
                         << " over their critical stretch";
-                  if (!reaction_ids.empty())
+                  if (has_reaction())
                     pcout << "; critical load: reaction "
                           << vector_text(&load_before[0], dim)
                           << " (its magnitude "
@@ -290,7 +295,7 @@ namespace PeriDEAL
           if (system->n_isolated_nodes() > 0)
             line << ", " << system->n_isolated_nodes()
                  << " node(s) without bonds held";
-          if (!reaction_ids.empty())
+          if (has_reaction())
             line << ", reaction " << vector_text(&reaction[0], dim);
           const double elapsed = simulator.elapsed();
           if (!last)
@@ -416,6 +421,34 @@ namespace PeriDEAL
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         flagged[i] = layer[i] != numbers::invalid_unsigned_int &&
                      system->is_constrained(nodes[i]);
+      // The boxes: each must hold a node and prescribed nodes, counted over
+      // all processes, so that every process throws alike.
+      Discretization::nodes_in_boxes(nodes,
+                                     reaction_boxes,
+                                     "quasi-static/Reaction boxes",
+                                     reaction_boxes_text,
+                                     "has no reaction");
+      for (unsigned int k = 0; k < reaction_boxes.size(); ++k)
+        {
+          unsigned int n_held = 0;
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            if (reaction_boxes[k].point_inside(nodes[i].location) &&
+                system->is_constrained(nodes[i]))
+              {
+                flagged[i] = true;
+                ++n_held;
+              }
+          AssertThrow(Utilities::MPI::sum(n_held,
+                                          simulator.get_communicator()) > 0,
+                      ExcInvalidInput("quasi-static/Reaction boxes",
+                                      reaction_boxes_text,
+                                      "box " + std::to_string(k + 1) +
+                                        " holds no prescribed node, so "
+                                        "nothing holds it and it has no "
+                                        "reaction; make each box cover nodes "
+                                        "of 'Boundary conditions/Dirichlet "
+                                        "boxes' or Dirichlet layers"));
+        }
       return flagged;
     }
 

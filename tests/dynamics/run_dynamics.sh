@@ -17,6 +17,31 @@
 #          the direction atan2(tip_y - y0, tip_x - x0) within [min, max]
 #          degrees, at least two cells away from (x0, y0) (the larger cell
 #          side of the 'Geometry' box: Lower/Upper corner, Subdivisions)
+#      # check: tip_speed_below_rayleigh <E> <nu> <rho> <plane stress|plane strain|3d>
+#          (closed form) the tracked crack tip (column tip_distance) never
+#          runs faster than the Rayleigh speed c_R of the model's long-wave
+#          elasticity: its advance between two energy rows over their time
+#          interval stays below c_R, the root in (0, c_s) of
+#          (2 - c^2/c_s^2)^2 = 4 sqrt(1 - c^2/c_d^2) sqrt(1 - c^2/c_s^2)
+#          (bisection), c_s^2 = E / (2 rho (1 + nu)), c_d^2 = E / (rho (1 -
+#          nu^2)) in plane stress and E (1 - nu) / (rho (1 + nu) (1 - 2 nu))
+#          otherwise;
+#      # check: dissipation_per_crack_length <G0> <min_advance> <low> <high>
+#          (fracture mechanics) along a single crack (rows whose
+#          front_spread is at most one cell), the energy the run has
+#          dissipated, external work - kinetic - elastic (the drop of the
+#          balance; the broken bonds take their energy with them), over G0
+#          times the advance of the tip (tip_distance, less its first value;
+#          per unit thickness in 2D) must lie in [low, high] at every row
+#          once the tip has advanced min_advance (the first broken bonds
+#          ahead of the tip are not yet a crack);
+#      # check: lefm_initiation_ramp <a> <b> <E'> <G0> <stress rate> <tolerance>
+#          (fracture mechanics) a centre crack of half-length a in a strip
+#          of half-width b under a remote stress rate * t, ramped slowly:
+#          at the first energy row with more broken bonds than the first
+#          row, rate * t must be sigma_c = sqrt(E' G0) / (F sqrt(pi a))
+#          within the relative tolerance, F = sqrt(sec(pi a / (2 b)))
+#          (Feddersen, as tests/fracture/run_fracture.sh);
 #      # check: verlet_energy_order <n_steps> [<every>]
 #          (on 1 process) over the first n_steps steps, before any bond
 #          breaks beyond the pre-crack (asserted), the balance moves only by
@@ -78,17 +103,63 @@ if [ -n "$min_new" ]; then
     || { cat "$csv"; echo "FAIL: too few bonds broke"; exit 1; }
 fi
 
-angle=$(sed -n 's/^# check: crack_angle *//p' input.prm)
-if [ -n "$angle" ]; then
-  # The larger cell side of the box mesh (one subdivision count may stand
-  # for all directions).
+# cell_size CHECK: the larger cell side of the box mesh (one subdivision
+# count may stand for all directions), or a failure naming CHECK.
+cell_size() {
   cell=$(awk -F= '/^ *set Lower corner *=/ { lo = $2 } /^ *set Upper corner *=/ { up = $2 }
     /^ *set Subdivisions *=/ { sub_ = $2 }
     END { n = split(lo, a, ","); split(up, b, ","); m = split(sub_, s, ","); h = 0
           for (k = 1; k <= n; ++k) { w = (b[k] - a[k]) / s[m > 1 ? k : 1]; if (w > h) h = w }
           print h }' input.prm)
   awk -v h="$cell" 'BEGIN { exit !(h > 0) }' \
-    || { echo "FAIL: crack_angle needs a box mesh ('Geometry/Lower corner', 'Upper corner', 'Subdivisions') for the cell size"; exit 1; }
+    || { echo "FAIL: $1 needs a box mesh ('Geometry/Lower corner', 'Upper corner', 'Subdivisions') for the cell size"; exit 1; }
+}
+
+speed=$(sed -n 's/^# check: tip_speed_below_rayleigh *//p' input.prm)
+if [ -n "$speed" ]; then
+  awk -F, -v spec="$speed" 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next }
+    { t = $1; d = $col["tip_distance"]
+      if (NR > 2 && t > t0) { v = (d - d0) / (t - t0); if (v > vmax) { vmax = v; at = t } }
+      t0 = t; d0 = d }
+    function f(c) { return (2 - c * c / cs2) ^ 2 - 4 * sqrt(1 - c * c / cd2) * sqrt(1 - c * c / cs2) }
+    END { split(spec, p, " "); E = p[1]; nu = p[2]; rho = p[3]
+          cs2 = E / (2 * rho * (1 + nu))
+          cd2 = (p[4] == "plane" && p[5] == "stress") ? E / (rho * (1 - nu * nu)) : E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu))
+          lo = 0.5 * sqrt(cs2); hi = sqrt(cs2) * (1 - 1e-12)
+          for (k = 0; k < 200; ++k) { c = (lo + hi) / 2; if (f(c) * f(lo) > 0) lo = c; else hi = c }
+          printf "fastest tip advance %.4g m/s (at t = %g), %.3f of the Rayleigh speed %.4g m/s (c_d %.4g, c_s %.4g)\n", vmax, at, vmax / c, c, sqrt(cd2), sqrt(cs2)
+          exit !(vmax > 0 && vmax < c) }' "$csv" \
+    || { echo "FAIL: the crack tip outran the Rayleigh speed (or never moved)"; exit 1; }
+fi
+
+ramp=$(sed -n 's/^# check: lefm_initiation_ramp *//p' input.prm)
+if [ -n "$ramp" ]; then
+  awk -F, -v spec="$ramp" 'NR == 2 { b0 = $7 } NR > 2 && !found && $7 > b0 { found = 1; t = $1 }
+    END { split(spec, p, " "); a = p[1]; b = p[2]; E = p[3]; G = p[4]; rate = p[5]; tol = p[6]
+          pi = atan2(0, -1); F = sqrt(1 / cos(pi * a / (2 * b)))
+          lefm = sqrt(E * G) / (F * sqrt(pi * a)); s = rate * t
+          printf "bonds first break at t = %g under sigma = %.5g; LEFM (Feddersen F = %.4f) %.5g: %+.2f %% (tolerance %g %%)\n", t, s, F, lefm, 100 * (s / lefm - 1), 100 * tol
+          d = s / lefm - 1; if (d < 0) d = -d; exit !(found && d <= tol) }' "$csv" \
+    || { echo "FAIL: initiation under the slow ramp against LEFM"; exit 1; }
+fi
+
+dissipation=$(sed -n 's/^# check: dissipation_per_crack_length *//p' input.prm)
+if [ -n "$dissipation" ]; then
+  cell_size dissipation_per_crack_length
+  awk -F, -v spec="$dissipation" -v h="$cell" 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next }
+    NR == 2 { b0 = $6; d0 = $col["tip_distance"] }
+    { split(spec, p, " "); a = $col["tip_distance"] - d0
+      if (a >= p[2] && $col["front_spread"] <= h * (1 + 1e-9)) {
+        r = (b0 - $6) / (p[1] * a); n++
+        if (n == 1 || r < rmin) rmin = r; if (n == 1 || r > rmax) rmax = r } }
+    END { printf "dissipated energy over G0 x crack advance on %d rows of a single crack: %.3f to %.3f (expected in [%s, %s])\n", n, rmin, rmax, p[3], p[4]
+          exit !(n >= 2 && rmin >= p[3] && rmax <= p[4]) }' "$csv" \
+    || { echo "FAIL: the energy dissipated per crack length is not G0"; exit 1; }
+fi
+
+angle=$(sed -n 's/^# check: crack_angle *//p' input.prm)
+if [ -n "$angle" ]; then
+  cell_size crack_angle
   awk -F, -v spec="$angle" -v h="$cell" 'NR == 1 { for (k = 1; k <= NF; ++k) col[$k] = k; next }
     { x = $col["tip_x"]; y = $col["tip_y"] }
     END { split(spec, a, " "); dx = x - a[1]; dy = y - a[2]

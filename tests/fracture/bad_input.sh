@@ -79,5 +79,29 @@ group_dynamic_relaxation() {
     "Invalid value 'dynamic relaxation' for the parameter 'quasi-static/Nonlinear solver': the boundary treatment 'surface nodes' does not offer it yet"
 }
 
+# Boxes: per-box Dirichlet components that do not match the boxes, name no
+# component or one the run lacks, or come without boxes; a reaction box
+# that holds no prescribed node or no node at all; the box named by its
+# place in the list.
+group_boxes() {
+  local box='s/set Dirichlet components = x, y/set Dirichlet components = x, y\n  set Dirichlet boxes = -0.05, -0.003, -0.045, 0.003/'
+  for np in 1 2; do
+    expect_error "$box"'; s/set Dirichlet components = x, y/set Dirichlet components = x, y\n  set Dirichlet box components = x; y/' \
+      "Invalid value 'x; y' for the parameter 'Boundary conditions/Dirichlet box components': it gives 2 component lists for 1 Dirichlet boxes; give one list per box, separated by ';'" $np
+    expect_error 's/set Reaction boundary ids = 3/set Reaction boundary ids = 3\n  set Reaction boxes = -0.01, 0.02, 0.01, 0.03/' \
+      "Invalid value '-0.01, 0.02, 0.01, 0.03' for the parameter 'quasi-static/Reaction boxes': box 1 holds no prescribed node, so nothing holds it and it has no reaction" $np
+  done
+  expect_error 's/set Reaction boundary ids = 3/set Reaction boundary ids = 3\n  set Reaction boxes = -0.05, 0.045, 0.05, 0.05; -0.01, 0.02, 0.01, 0.03/' \
+    "Invalid value '-0.05, 0.045, 0.05, 0.05; -0.01, 0.02, 0.01, 0.03' for the parameter 'quasi-static/Reaction boxes': box 2 holds no prescribed node"
+  expect_error "$box"'; s/set Dirichlet boxes = -0.05, -0.003, -0.045, 0.003/set Dirichlet boxes = -0.05, -0.003, -0.045, 0.003; 0.3, 0.3, 0.31, 0.31/' \
+    "Invalid value '-0.05, -0.003, -0.045, 0.003; 0.3, 0.3, 0.31, 0.31' for the parameter 'Boundary conditions/Dirichlet boxes': box 2 holds no node centre"
+  expect_error "$box"'; s/set Dirichlet components = x, y/set Dirichlet components = x, y\n  set Dirichlet box components = z/' \
+    "Invalid value 'z' for the parameter 'Boundary conditions/Dirichlet box components': 'z' is not a displacement component of this 2D run; use x, y"
+  expect_error 's/set Dirichlet components = x, y/set Dirichlet components = x, y\n  set Dirichlet box components = y/' \
+    "Invalid value 'y' for the parameter 'Boundary conditions/Dirichlet box components': there are no 'Dirichlet boxes', so these components would prescribe nothing"
+  expect_error 's/set Reaction boundary ids = 3/set Reaction boundary ids = 3\n  set Reaction boxes = 0.2, 0.2, 0.3, 0.3/' \
+    "Invalid value '0.2, 0.2, 0.3, 0.3' for the parameter 'quasi-static/Reaction boxes'"
+}
+
 run_case_group "$group"
 finish "all bad inputs rejected with clear messages"

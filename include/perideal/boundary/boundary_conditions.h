@@ -43,7 +43,9 @@ namespace PeriDEAL
      *   are inhomogeneous identity constraints u_k = g(x_i) in an
      *   AffineConstraints object over the locally relevant DoFs, so that a
      *   node's status is the same on every process that sees it. Nodes in
-     *   one of the "Dirichlet boxes" are prescribed in the same way.
+     *   one of the "Dirichlet boxes" are prescribed in the same way, each
+     *   box with its own components if "Dirichlet box components" says so
+     *   (rollers and pins).
      * - **Body force** b(x), applied as the nodal force V_i b(x_i).
      * - **Traction** t(x) on the boundary faces with one of the "Traction
      *   boundary ids": the force t(x_f) |f| of face f goes to the node of
@@ -230,6 +232,11 @@ namespace PeriDEAL
       }
 
     private:
+      /// The masks of 'Dirichlet box components' (empty if the entry is),
+      /// one per box; throws on a malformed entry.
+      static std::vector<std::vector<bool>>
+      parse_box_components(const std::string &text, const unsigned int n_boxes);
+
       /// add_load() and add_constant_load(): with @p sites, the loads that
       /// depend on time go there instead of into @p load.
       void
@@ -243,6 +250,9 @@ namespace PeriDEAL
       std::vector<bool>               dirichlet_components;
       std::vector<BoundingBox<dim>>   dirichlet_boxes;
       std::string                     dirichlet_boxes_text;
+      /// 'Dirichlet box components': the components each box prescribes.
+      std::vector<std::vector<bool>> dirichlet_box_components;
+      std::string                    dirichlet_box_components_text;
       /// 'Dirichlet displacement/Function expression', for messages.
       std::string                     dirichlet_expression_text;
       double                          layer_thickness      = 1;

@@ -1,6 +1,8 @@
 #ifndef perideal_problems_quasi_static_h
 #define perideal_problems_quasi_static_h
 
+#include <deal.II/base/bounding_box.h>
+
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/boundary/discrete_system.h>
@@ -103,6 +105,14 @@ namespace PeriDEAL
                use_dynamic_relaxation;
       }
 
+      /// Whether a reaction is written: 'Reaction boundary ids' or
+      /// 'Reaction boxes' are given.
+      bool
+      has_reaction() const
+      {
+        return !reaction_ids.empty() || !reaction_boxes.empty();
+      }
+
       /// The load-stepped run (quasi_static_steps.cc).
       void
       run_load_steps(Simulator<dim> &simulator);
@@ -123,7 +133,8 @@ namespace PeriDEAL
       largest_stretch_ratio(const double precision);
 
       /// The owned nodes with a prescribed component in the Dirichlet
-      /// layers of 'Reaction boundary ids' (after the first solve).
+      /// layers of 'Reaction boundary ids' or in the 'Reaction boxes'
+      /// (after the first solve). Collective.
       std::vector<bool>
       reaction_nodes(const Simulator<dim> &simulator) const;
 
@@ -169,7 +180,11 @@ namespace PeriDEAL
       double                          failure_fraction   = 0.01;
       std::vector<types::boundary_id> reaction_ids;
       std::string                     reaction_ids_text;
-      std::string                     load_displacement_file;
+      std::vector<BoundingBox<dim>>   reaction_boxes;
+      std::string                     reaction_boxes_text;
+      /// Whether reaction_nodes() has been called (collective, once).
+      bool        reaction_nodes_found = false;
+      std::string load_displacement_file;
       /// Pre-cracks and no-fail regions.
       BondFailure<dim> failure;
       /// 'Nonlinear solver = dynamic relaxation' and its settings.
