@@ -237,11 +237,12 @@ namespace PeriDEAL
                                       solution,
                                       step_rhs,
                                       context.communicator) :
-            context.linear_solver.solve(constrained_operator,
-                                        solution,
-                                        step_rhs,
-                                        &local_matrix,
-                                        constant_modes);
+          finite ? solve_newton(context, solution) :
+                   context.linear_solver.solve(constrained_operator,
+                                               solution,
+                                               step_rhs,
+                                               &local_matrix,
+                                               constant_modes);
       }
       free_solution = solution;
       solution += step_prescribed;

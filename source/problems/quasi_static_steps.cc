@@ -61,6 +61,8 @@ namespace PeriDEAL
                               "' does not offer it yet; use 'Newton'"));
           system->set_dynamic_relaxation(&dynamic_relaxation);
         }
+      if (finite_deformation)
+        system->set_finite_deformation(newton);
       if (breaking)
         {
           // The horizon is known from here on.
@@ -93,7 +95,11 @@ namespace PeriDEAL
              << format_number(end_time) << ", steps of at most "
              << format_number(largest_step) << " (at least "
              << format_number(minimum_step) << "), bond breaking '"
-             << bond_breaking_name << "'";
+             << bond_breaking_name << "', "
+             << (finite_deformation ? "finite deformation (modified Newton "
+                                      "to a relative residual of " +
+                                        format_number(newton.tolerance) + ")" :
+                                      std::string("small strain"));
         if (breaking)
           line << ", critical stretch "
                << format_number(simulator.get_model().critical_stretch(
