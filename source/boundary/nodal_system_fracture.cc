@@ -176,6 +176,7 @@ namespace PeriDEAL
           x += dx;
         }
       report.relative_residual = b_norm > 0 ? r_norm / b_norm : r_norm;
+      report.corrections       = it;
       report.seconds           = timer.wall_time();
       report.method            = "modified Newton (" + std::to_string(it) +
                       " correction(s) by " + report.method + ")";

@@ -166,10 +166,11 @@ namespace PeriDEAL
               cut_step();
               continue;
             }
-          unsigned int   iterations = context.summary.solver.iterations;
-          unsigned int   solves     = 1;
-          std::size_t    new_bonds  = 0;
-          std::size_t    over       = 0;
+          unsigned int   iterations  = context.summary.solver.iterations;
+          unsigned int   corrections = context.summary.solver.corrections;
+          unsigned int   solves      = 1;
+          std::size_t    new_bonds   = 0;
+          std::size_t    over        = 0;
           Tensor<1, dim> reaction;
           // Found once, on the first converged step, by every process at
           // once (a process may own no node).
@@ -237,6 +238,7 @@ namespace PeriDEAL
                                 "path). The solver said:\n" +
                                 error));
                   iterations += context.summary.solver.iterations;
+                  corrections += context.summary.solver.corrections;
                   if (has_reaction())
                     {
                       reaction = system->holding_force(context, flagged);
@@ -292,9 +294,12 @@ namespace PeriDEAL
           std::ostringstream line;
           line << "step " << step << ", t = " << format_number(t) << " (dt "
                << format_number(step_size) << "), " << solves << " solve(s), "
-               << iterations << " iteration(s), equilibrium residual "
-               << std::scientific << std::setprecision(1)
-               << context.summary.equilibrium_residual << std::defaultfloat;
+               << iterations << " iteration(s), ";
+          if (finite_deformation && !use_dynamic_relaxation)
+            line << corrections << " Newton correction(s), ";
+          line << "equilibrium residual " << std::scientific
+               << std::setprecision(1) << context.summary.equilibrium_residual
+               << std::defaultfloat;
           if (breaking)
             line << ", bonds broken +" << new_bonds << " (" << broken
                  << " in all)";
