@@ -22,7 +22,16 @@
 # '4:130 6:200', beside the m = 3 runs at 100^2: multiples of 10, so that
 # the pre-crack runs between node rows and its tips lie midway between
 # node columns, as at m = 3; --quick: none) for
-# M_MODELS (default pmb_plane_stress lps_plane_stress). Fails unless every
+# M_MODELS (default pmb_plane_stress lps_plane_stress); MODELS the models
+# of the refinement at m = 3 (default all three; may be empty); A_STUDY the
+# a/W study at m = 4 with the peak load as the measure (pairs cells:a in
+# mm on a plate twice as tall, 0.1 x 0.2 m, so that the grips' distance
+# leaves Feddersen's infinite strip; default none, e.g. '130:10 130:20
+# 130:30': a multiple of h = 0.1 m / cells, so the tips lie midway between
+# node columns) for the M_MODELS; FINITE_STUDY pairs m:cells run with
+# 'Kinematics = finite deformation' (solver column newton_finite) beside
+# the same runs in small strain (default none, e.g. '3:100 4:130'), PMB
+# plane stress. Fails unless every
 # model is within 5 % of LEFM at the finest grid at m = 3 and dynamic
 # relaxation breaks the same bonds at every step as Newton.
 set -euo pipefail
@@ -40,19 +49,35 @@ fi
 m_models="${M_MODELS:-pmb_plane_stress lps_plane_stress}"
 
 csv="$out/centre_crack.csv"
-echo "model,solver,cells,m,delta_over_a,nodes,reaction_initiation,reaction_lefm,gap_percent,reaction_peak,wall_seconds,steps,iterations" > "$csv"
+a_study="${A_STUDY-}"
+models="${MODELS-pmb_plane_stress lps_plane_stress lps_plane_strain}"
+echo "model,solver,cells,m,delta_over_a,nodes,reaction_initiation,reaction_lefm,gap_percent,reaction_peak,wall_seconds,steps,iterations,a_over_b,height_over_width,peak_gap_percent" > "$csv"
 
-# run MODEL SOLVER N [M]: one run (N cells per side, m-ratio M, default 3),
-# one CSV row.
+# run MODEL SOLVER N [M [A]]: one run (N cells per side, m-ratio M, default
+# 3; with A, the half crack length in mm, on the 0.1 x 0.2 m plate), one
+# CSV row.
 run() {
-  local model="$1" solver="$2" n="$3" m="${4:-3}"
+  local model="$1" solver="$2" n="$3" m="${4:-3}" a_mm="${5:-}"
   local base="tests/fracture/centre_crack_${model}.prm"
   local name="${model}_${solver}_${n}"
   [ "$m" = 3 ] || name="${name}_m$m"
+  [ -z "$a_mm" ] || name="${name}_a${a_mm}mm"
   local prm="$out/logs/$name.prm" log="$out/logs/$name.log"
   sed -e "s/set Subdivisions = 50, 50/set Subdivisions = $n, $n/" \
       -e "s/set m-ratio = 3/set m-ratio = $m/" \
       -e "s|set Directory = output|set Directory = $out/logs/$name|" "$base" > "$prm"
+  if [ -n "$a_mm" ]; then
+    local a; a=$(awk -v a="$a_mm" 'BEGIN { printf "%.10g", a / 1000 }')
+    sed -i -e "s/set Subdivisions = $n, $n/set Subdivisions = $n, $((2 * n))/" \
+      -e "s/set Lower corner = -0.05, -0.05/set Lower corner = -0.05, -0.1/" \
+      -e "s/set Upper corner = 0.05, 0.05/set Upper corner = 0.05, 0.1/" \
+      -e "s/2e-5\*t\*sign(y)/4e-5*t*sign(y)/" \
+      -e "s/set Pre-cracks = -0.01, 0, 0.01, 0/set Pre-cracks = -$a, 0, $a, 0/" \
+      -e "s/^# check: lefm_initiation 0.01 /# check: lefm_initiation $a /" "$prm"
+  fi
+  if [ "$solver" = newton_finite ]; then
+    sed -i 's/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  set Kinematics = finite deformation/' "$prm"
+  fi
   if [ "$solver" = dynamic_relaxation ]; then
     sed -i -e '/subsection Linear solver/,/^end/d' \
       -e 's/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  set Nonlinear solver = dynamic relaxation/' "$prm"
@@ -62,7 +87,7 @@ run() {
   local wall lefm
   wall=$(sed -n 's/^total wall time \([0-9.e+-]*\) s.*/\1/p' "$log")
   lefm=$(sed -n 's/^# check: lefm_initiation *//p' "$prm")
-  awk -F, -v spec="$lefm" -v model="$model" -v solver="$solver" -v n="$n" -v m="$m" -v wall="$wall" '
+  awk -F, -v spec="$lefm" -v model="$model" -v solver="$solver" -v n="$n" -v m="$m" -v wall="$wall" -v tall="${a_mm:+1}" '
     NR == 2 { b0 = $5; k = $4 / $2 }
     NR > 1 { it += $6; steps++; r = $4 < 0 ? -$4 : $4; if (r > peak) peak = r
              if (!found && $5 > b0) { found = 1; init = k * $2 } }
@@ -70,11 +95,12 @@ run() {
           pi = atan2(0, -1); F = sqrt(1 / cos(pi * a / (2 * b)))
           lefm = sqrt(E * G) / (F * sqrt(pi * a)) * 2 * b
           h = 2 * b / n; gap = 100 * (init / lefm - 1)
-          printf "%s,%s,%d,%d,%.4g,%d,%.6g,%.6g,%.3f,%.6g,%s,%d,%d\n", model, solver, n, m, m * h / a, n * n, init, lefm, gap, peak, wall, steps, it }' \
-    "$out/logs/$name/load_displacement.csv" | tee -a "$csv" | awk -F, '{ printf "initiation %s (LEFM %s, %+.2f %%), %s s\n", $7, $8, $9, $11 }'
+          hw = (tall ? 2 : 1)
+          printf "%s,%s,%d,%d,%.4g,%d,%.6g,%.6g,%.3f,%.6g,%s,%d,%d,%.4g,%d,%.3f\n", model, solver, n, m, m * h / a, n * n * hw, init, lefm, gap, peak, wall, steps, it, a / b, hw, 100 * (peak / lefm - 1) }' \
+    "$out/logs/$name/load_displacement.csv" | tee -a "$csv" | awk -F, '{ printf "initiation %s (LEFM %s, %+.2f %%), peak %+.2f %%, %s s\n", $7, $8, $9, $16, $11 }'
 }
 
-for model in pmb_plane_stress lps_plane_stress lps_plane_strain; do
+for model in $models; do
   for n in $sizes; do run "$model" newton "$n"; done
 done
 for n in $dr_sizes; do run pmb_plane_stress dynamic_relaxation "$n"; done
@@ -82,6 +108,17 @@ for n in $dr_sizes; do run pmb_plane_stress dynamic_relaxation "$n"; done
 # the gap left at fixed m is told apart from the gap of a coarse delta.
 for model in $m_models; do
   for mn in $m_study; do run "$model" newton "${mn#*:}" "${mn%%:*}"; done
+done
+# The a/W study at m = 4 on the taller plate (peak load against LEFM).
+for model in $m_models; do
+  for na in $a_study; do run "$model" newton "${na%%:*}" 4 "${na#*:}"; done
+done
+
+# Finite deformation beside small strain.
+for mn in ${FINITE_STUDY-}; do
+  for solver in newton newton_finite; do
+    run pmb_plane_stress "$solver" "${mn#*:}" "${mn%%:*}"
+  done
 done
 
 # The checks: within 5 % of LEFM at the finest grid; dynamic relaxation on

@@ -75,6 +75,22 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    DiscreteSystem<dim>::supports_finite_deformation() const
+    {
+      return false;
+    }
+
+
+    template <int dim>
+    void
+    DiscreteSystem<dim>::set_finite_deformation(const NewtonControl &)
+    {
+      AssertThrow(false, ExcInternalError());
+    }
+
+
+    template <int dim>
     void
     DiscreteSystem<dim>::solve_step(const SystemContext<dim> &,
                                     TrilinosWrappers::MPI::Vector &)

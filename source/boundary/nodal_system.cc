@@ -237,11 +237,12 @@ namespace PeriDEAL
                                       solution,
                                       step_rhs,
                                       context.communicator) :
-            context.linear_solver.solve(constrained_operator,
-                                        solution,
-                                        step_rhs,
-                                        &local_matrix,
-                                        constant_modes);
+          finite ? solve_newton(context, solution) :
+                   context.linear_solver.solve(constrained_operator,
+                                               solution,
+                                               step_rhs,
+                                               &local_matrix,
+                                               constant_modes);
       }
       free_solution = solution;
       solution += step_prescribed;
@@ -497,7 +498,12 @@ namespace PeriDEAL
       for (const auto dof : owned)
         if (!constraints.is_constrained(dof))
           free_residual2 += std::pow(internal[dof] + load[dof], 2);
-      const double scale = internal.l2_norm();
+      // With finite kinematics a rigid motion leaves no internal force at
+      // all, and the residual is measured against the step's lifted
+      // right-hand side as well (the scale of the Newton test).
+      const double scale = finite ?
+                             std::max(internal.l2_norm(), step_rhs.l2_norm()) :
+                             internal.l2_norm();
       free_residual2 =
         Utilities::MPI::sum(free_residual2, context.communicator);
       context.summary.equilibrium_residual =

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace PeriDEAL
 {
@@ -25,12 +26,13 @@ namespace PeriDEAL
         Operators::BondOperator<dim>                     &bond_operator,
         const std::vector<double>                        &critical_stretch,
         const double                                      factor,
-        const LinearAlgebra::distributed::Vector<double> &displacement)
+        const LinearAlgebra::distributed::Vector<double> &displacement,
+        const bool                                        finite)
       {
         std::vector<double> scaled(critical_stretch);
         for (double &s0 : scaled)
           s0 *= factor;
-        bond_operator.set_kinematics(false, scaled);
+        bond_operator.set_kinematics(finite, scaled);
         LinearAlgebra::distributed::Vector<double> force;
         bond_operator.initialize_dof_vector(force);
         bond_operator.apply(displacement, force);
@@ -123,6 +125,78 @@ namespace PeriDEAL
 
 
     template <int dim>
+    void
+    NodalSystem<dim>::set_finite_deformation(
+      const typename DiscreteSystem<dim>::NewtonControl &control)
+    {
+      AssertThrow(collocation.n_collocation_nodes == 0, ExcInternalError());
+      finite = true;
+      newton = control;
+      bond_operator.set_kinematics(true);
+    }
+
+
+    template <int dim>
+    Solvers::SolverReport
+    NodalSystem<dim>::solve_newton(const SystemContext<dim> &context,
+                                   VectorType               &x)
+    {
+      // r = b - A(x) with the finite kinematics, corrections K dx = r with
+      // the linearised stiffness: a modified Newton (chord) method, whose
+      // rate is about the distance of the tangent from K (the strains and
+      // rotations); each correction a Krylov solve to the linear solver's
+      // tolerance relative to |r|.
+      Timer                 timer;
+      Solvers::SolverReport report;
+      VectorType            r, dx;
+      constrained_operator.initialize_dof_vector(r);
+      constrained_operator.initialize_dof_vector(dx);
+      const double b_norm = step_rhs.l2_norm();
+      const double goal   = newton.tolerance * b_norm;
+      double       r_norm = 0;
+      unsigned int it     = 0;
+      for (;; ++it)
+        {
+          constrained_operator.residual(r, x, step_rhs);
+          r_norm = r.l2_norm();
+          AssertThrow(std::isfinite(r_norm),
+                      ExcNoConvergence(
+                        "the finite-deformation residual is not finite after " +
+                        std::to_string(it) + " Newton correction(s)"));
+          if (r_norm <= goal || it == newton.max_iterations)
+            break;
+          dx                = 0;
+          const auto linear = context.linear_solver.solve(constrained_operator,
+                                                          dx,
+                                                          r,
+                                                          &local_matrix,
+                                                          constant_modes);
+          report.iterations += linear.iterations;
+          report.method = linear.method;
+          x += dx;
+        }
+      report.relative_residual = b_norm > 0 ? r_norm / b_norm : r_norm;
+      report.corrections       = it;
+      report.seconds           = timer.wall_time();
+      report.method            = "modified Newton (" + std::to_string(it) +
+                      " correction(s) by " + report.method + ")";
+      if (r_norm > goal)
+        {
+          std::ostringstream message;
+          message << "the modified Newton iteration of finite deformation did "
+                     "not converge in "
+                  << it << " corrections: relative residual "
+                  << report.relative_residual << " against the tolerance "
+                  << newton.tolerance
+                  << " ('quasi-static/Newton/Relative tolerance', 'Maximum "
+                     "iterations')";
+          AssertThrow(false, ExcNoConvergence(message.str()));
+        }
+      return report;
+    }
+
+
+    template <int dim>
     std::size_t
     NodalSystem<dim>::count_critical_bonds(const double factor)
     {
@@ -131,9 +205,10 @@ namespace PeriDEAL
       find_bonds_over(bond_operator,
                       critical_stretch,
                       factor,
-                      last_displacement);
+                      last_displacement,
+                      finite);
       const std::size_t n = bond_operator.count_exceeded_bonds();
-      bond_operator.set_kinematics(false);
+      bond_operator.set_kinematics(finite);
       return n;
     }
 
@@ -147,9 +222,10 @@ namespace PeriDEAL
       find_bonds_over(bond_operator,
                       critical_stretch,
                       factor,
-                      last_displacement);
+                      last_displacement,
+                      finite);
       const std::size_t n = bond_operator.commit_broken_bonds(bond_state);
-      bond_operator.set_kinematics(false);
+      bond_operator.set_kinematics(finite);
       return n;
     }
 

@@ -227,6 +227,25 @@ namespace PeriDEAL
 
 
     template <int dim>
+    void
+    BondOperator<dim>::apply_linearised(const VectorType &displacement,
+                                        VectorType       &force) const
+    {
+      copy_in(displacement);
+      if (state_based)
+        dilatation_pass();
+      force_pass();
+      if (has_collocation_rows())
+        collocation_pass();
+      double *values = force.begin();
+      layout.for_each_node(nodes->n_owned(), [&](const unsigned int i) {
+        for (unsigned int c = 0; c < dim; ++c)
+          values[layout.vector_index[i] + c] = f_slot[c][layout.slot[i]];
+      });
+    }
+
+
+    template <int dim>
     double
     BondOperator<dim>::apply_with_energy(const VectorType &displacement,
                                          VectorType       &force) const
@@ -511,6 +530,8 @@ namespace PeriDEAL
   template void BondOperator<dim>::force_pass() const;                         \
   template void BondOperator<dim>::apply(const VectorType &, VectorType &)     \
     const;                                                                     \
+  template void   BondOperator<dim>::apply_linearised(const VectorType &,      \
+                                                    VectorType &) const;     \
   template double BondOperator<dim>::apply_with_energy(const VectorType &,     \
                                                        VectorType &) const;    \
   template void   BondOperator<dim>::compute_dilatation(const VectorType &,    \

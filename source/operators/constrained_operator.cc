@@ -54,11 +54,43 @@ namespace PeriDEAL
       for (unsigned int k = 0; k < local; ++k)
         work.local_element(k) = prescribed_entry[k] ? 0. : src.local_element(k);
       work.update_ghost_values();
-      op->apply(work, dst);
+      op->apply_linearised(work, dst);
       for (unsigned int k = 0; k < local; ++k)
         dst.local_element(k) = prescribed_entry[k] ?
                                  diag.local_element(k) * src.local_element(k) :
                                  -dst.local_element(k);
+      ++applications;
+    }
+
+
+    template <int dim>
+    void
+    ConstrainedOperator<dim>::residual(VectorType       &r,
+                                       const VectorType &x,
+                                       const VectorType &b) const
+    {
+      if (!op->finite_kinematics())
+        {
+          vmult(r, x);
+          r.sadd(-1., 1., b);
+          return;
+        }
+      AssertThrow(prescribed_force.size() == x.size(),
+                  ExcMessage("ConstrainedOperator::residual() with finite "
+                             "kinematics needs lift() first."));
+      const unsigned int local = prescribed_entry.size();
+      for (unsigned int k = 0; k < local; ++k)
+        work.local_element(k) =
+          prescribed_entry[k] ? prescribed_value[k] : x.local_element(k);
+      work.update_ghost_values();
+      op->apply(work, r);
+      // b_f - A(x)_f = b_f + F(x + g)_f - F(g)_f.
+      for (unsigned int k = 0; k < local; ++k)
+        r.local_element(k) =
+          prescribed_entry[k] ?
+            b.local_element(k) - diag.local_element(k) * x.local_element(k) :
+            b.local_element(k) + r.local_element(k) -
+              prescribed_force.local_element(k);
       ++applications;
     }
 
@@ -77,6 +109,10 @@ namespace PeriDEAL
       prescribed.update_ghost_values();
       // rhs = load - K g = load + F(g) on free DoFs.
       op->apply(prescribed, rhs);
+      if (op->finite_kinematics())
+        prescribed_force = rhs;
+      else
+        prescribed_force.reinit(0);
       for (unsigned int k = 0; k < local; ++k)
         rhs.local_element(k) = prescribed_entry[k] ?
                                  0. :

@@ -73,12 +73,40 @@ namespace PeriDEAL
       prm.enter_subsection("dynamic relaxation");
       Solvers::DynamicRelaxation::declare_parameters(prm);
       prm.leave_subsection();
-      prm.declare_entry("Kinematics",
-                        "small strain",
-                        Patterns::Selection("small strain"),
-                        "The bond kinematics: 'small strain' (the bond "
-                        "extension linearised in u). (Finite deformation is "
-                        "planned, not built.)");
+      prm.declare_entry(
+        "Kinematics",
+        "small strain",
+        Patterns::Selection("small strain|finite deformation"),
+        "The bond kinematics: 'small strain' (the bond extension linearised "
+        "in u, n.(u_j - u_i), and the force along the undeformed bond: each "
+        "equilibrium is linear) or 'finite deformation' (the extension "
+        "|xi + eta| - |xi| and the force along the deformed bond, as in "
+        "explicit dynamics: rigid rotations of any size leave no force; the "
+        "critical stretch is compared with the finite stretch). Finite "
+        "deformation is solved by a modified Newton method (subsection "
+        "'Newton': the corrections by 'Linear solver' on the matrix-free "
+        "operator with the stiffness of the reference configuration) or by "
+        "dynamic relaxation of the nonlinear residual; it needs 'Quadrature/"
+        "Scheme = standard' and 'Boundary treatment/Treatment = none'.");
+      prm.enter_subsection("Newton");
+      {
+        prm.declare_entry(
+          "Relative tolerance",
+          "1e-8",
+          Patterns::Double(0),
+          "With 'Kinematics = finite deformation': the equilibrium of a "
+          "load step is reached when the residual |f_ext + F(u)| (free "
+          "DoFs) is at most this times the norm of the step's lifted "
+          "right-hand side (the scale of the Krylov solvers' test).");
+        prm.declare_entry(
+          "Maximum iterations",
+          "50",
+          Patterns::Integer(1),
+          "With 'Kinematics = finite deformation': the most Newton "
+          "corrections of one solve; a solve that needs more fails and the "
+          "step control cuts the load step.");
+      }
+      prm.leave_subsection();
       prm.declare_entry(
         "Reaction boundary ids",
         "",
@@ -183,6 +211,16 @@ namespace PeriDEAL
       failure.parse_parameters(prm, "quasi-static");
       use_dynamic_relaxation =
         prm.get("Nonlinear solver") == "dynamic relaxation";
+      finite_deformation = prm.get("Kinematics") == "finite deformation";
+      prm.enter_subsection("Newton");
+      newton.tolerance = prm.get_double("Relative tolerance");
+      AssertThrow(newton.tolerance > 0 && newton.tolerance < 1,
+                  ExcInvalidInput("quasi-static/Newton/Relative tolerance",
+                                  prm.get("Relative tolerance"),
+                                  "give a tolerance between 0 and 1, e.g. "
+                                  "1e-8"));
+      newton.max_iterations = prm.get_integer("Maximum iterations");
+      prm.leave_subsection();
       prm.enter_subsection("dynamic relaxation");
       dynamic_relaxation.parse_parameters(prm,
                                           "quasi-static/dynamic relaxation/");
@@ -236,6 +274,44 @@ namespace PeriDEAL
                                       "ids of 'Boundary conditions/Dirichlet "
                                       "boundary ids' (" +
                                       bc.dirichlet_ids_string() + ")"));
+      if (finite_deformation)
+        {
+          AssertThrow(
+            probe->supports_finite_deformation(),
+            ExcInvalidInput("quasi-static/Kinematics",
+                            "finite deformation",
+                            "the boundary treatment '" +
+                              simulator.get_boundary_treatment_name() +
+                              "' solves small strains only; use 'Boundary "
+                              "treatment/Treatment = none', or 'Kinematics = "
+                              "small strain'"));
+          AssertThrow(
+            simulator.get_quadrature_scheme().collocation() == nullptr,
+            ExcInvalidInput("quasi-static/Kinematics",
+                            "finite deformation",
+                            "the collocation rows are linear in u; set "
+                            "'Quadrature/Scheme = standard', or 'Kinematics = "
+                            "small strain'"));
+          AssertThrow(
+            use_dynamic_relaxation ||
+              simulator.get_linear_solver().is_matrix_free(),
+            ExcInvalidInput("quasi-static/Kinematics",
+                            "finite deformation",
+                            "its Newton corrections run on the matrix-free "
+                            "operator; set 'Linear solver/Operator = "
+                            "matrix-free' (with a Krylov 'Method'), or "
+                            "'Nonlinear solver = dynamic relaxation'"));
+        }
+      // Load stepping (solve_step()) belongs to the same group of functions
+      // as bond breaking.
+      AssertThrow(n_load_steps == 1 || probe->supports_bond_breaking(),
+                  ExcInvalidInput("quasi-static/Load steps",
+                                  std::to_string(n_load_steps),
+                                  "the boundary treatment '" +
+                                    simulator.get_boundary_treatment_name() +
+                                    "' solves one load only; set 'Load steps "
+                                    "= 1', or use 'Boundary treatment/"
+                                    "Treatment = none'"));
       if (bond_breaking == BondBreaking::off)
         return;
       AssertThrow(probe->supports_bond_breaking(),
@@ -365,6 +441,16 @@ namespace PeriDEAL
                             "'Bond breaking = off') writes no "
                             "load-displacement file; give more 'Load "
                             "steps', or remove the entry"});
+      if (!finite_deformation || use_dynamic_relaxation)
+        unused.push_back(
+          {section + "Newton/",
+           finite_deformation ?
+             "'Nonlinear solver = dynamic relaxation' has its own test of "
+             "convergence ('quasi-static/dynamic relaxation'); remove the "
+             "entry, or use 'Newton'" :
+             "with 'Kinematics = small strain' each equilibrium is one "
+             "linear solve ('Linear solver'); set 'Kinematics = finite "
+             "deformation', or remove the entry"});
       if (use_dynamic_relaxation)
         unused.push_back({"Linear solver/",
                           "'quasi-static/Nonlinear solver = dynamic "

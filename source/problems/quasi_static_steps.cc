@@ -61,6 +61,8 @@ namespace PeriDEAL
                               "' does not offer it yet; use 'Newton'"));
           system->set_dynamic_relaxation(&dynamic_relaxation);
         }
+      if (finite_deformation)
+        system->set_finite_deformation(newton);
       if (breaking)
         {
           // The horizon is known from here on.
@@ -93,7 +95,11 @@ namespace PeriDEAL
              << format_number(end_time) << ", steps of at most "
              << format_number(largest_step) << " (at least "
              << format_number(minimum_step) << "), bond breaking '"
-             << bond_breaking_name << "'";
+             << bond_breaking_name << "', "
+             << (finite_deformation ? "finite deformation (modified Newton "
+                                      "to a relative residual of " +
+                                        format_number(newton.tolerance) + ")" :
+                                      std::string("small strain"));
         if (breaking)
           line << ", critical stretch "
                << format_number(simulator.get_model().critical_stretch(
@@ -160,10 +166,11 @@ namespace PeriDEAL
               cut_step();
               continue;
             }
-          unsigned int   iterations = context.summary.solver.iterations;
-          unsigned int   solves     = 1;
-          std::size_t    new_bonds  = 0;
-          std::size_t    over       = 0;
+          unsigned int   iterations  = context.summary.solver.iterations;
+          unsigned int   corrections = context.summary.solver.corrections;
+          unsigned int   solves      = 1;
+          std::size_t    new_bonds   = 0;
+          std::size_t    over        = 0;
           Tensor<1, dim> reaction;
           // Found once, on the first converged step, by every process at
           // once (a process may own no node).
@@ -231,6 +238,7 @@ namespace PeriDEAL
                                 "path). The solver said:\n" +
                                 error));
                   iterations += context.summary.solver.iterations;
+                  corrections += context.summary.solver.corrections;
                   if (has_reaction())
                     {
                       reaction = system->holding_force(context, flagged);
@@ -286,9 +294,12 @@ namespace PeriDEAL
           std::ostringstream line;
           line << "step " << step << ", t = " << format_number(t) << " (dt "
                << format_number(step_size) << "), " << solves << " solve(s), "
-               << iterations << " iteration(s), equilibrium residual "
-               << std::scientific << std::setprecision(1)
-               << context.summary.equilibrium_residual << std::defaultfloat;
+               << iterations << " iteration(s), ";
+          if (finite_deformation && !use_dynamic_relaxation)
+            line << corrections << " Newton correction(s), ";
+          line << "equilibrium residual " << std::scientific
+               << std::setprecision(1) << context.summary.equilibrium_residual
+               << std::defaultfloat;
           if (breaking)
             line << ", bonds broken +" << new_bonds << " (" << broken
                  << " in all)";

@@ -75,8 +75,38 @@ group_dynamic_relaxation() {
     "Invalid value '0' for the parameter 'quasi-static/dynamic relaxation/Relative tolerance': give a tolerance in (0, 1)"
   expect_error 's/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  subsection dynamic relaxation\n    set Maximum iterations = 20\n  end/' \
     "Invalid value '20' for the parameter 'quasi-static/dynamic relaxation/Maximum iterations': this entry has no effect here: 'Nonlinear solver = Newton' does not relax"
-  expect_error 's/  set No-fail boundary ids = 2, 3/  set Nonlinear solver = dynamic relaxation/; /subsection Linear solver/,/^end/d; s/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/; s/set Bond breaking = all beyond critical/set Bond breaking = off/; /Pre-cracks/d; /Fracture energy/d; /Reaction boundary/d' \
+  expect_error 's/  set No-fail boundary ids = 2, 3/  set Nonlinear solver = dynamic relaxation/; /subsection Linear solver/,/^end/d; s/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/; s/set Bond breaking = all beyond critical/set Bond breaking = off/; /Pre-cracks/d; /Fracture energy/d; /Reaction boundary/d; s/set Load steps = 10/set Load steps = 1/' \
     "Invalid value 'dynamic relaxation' for the parameter 'quasi-static/Nonlinear solver': the boundary treatment 'surface nodes' does not offer it yet"
+}
+
+# 'Kinematics = finite deformation': it runs (and breaks the plate); the
+# Newton entries where they do nothing (small strain, dynamic relaxation),
+# a bad tolerance, the combinations it does not solve (the assembled
+# operator, the surface node method); load steps with the surface node
+# method.
+group_finite_deformation() {
+  local finite='s/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  set Kinematics = finite deformation/'
+  local newton='s/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  subsection Newton\n    set Relative tolerance = 1e-9\n  end/'
+  sed "$finite" base.prm > finite.prm
+  expect_valid 2 finite.prm "finite deformation" out/solution.pvd out/load_displacement.csv
+  rm -rf out
+  for np in 1 2; do
+    expect_error "$newton" \
+      "Invalid value '1e-9' for the parameter 'quasi-static/Newton/Relative tolerance': this entry has no effect here: with 'Kinematics = small strain' each equilibrium is one linear solve" $np
+    expect_error "$finite"'; s/set Operator = matrix-free/set Operator = assembled/; s/set Preconditioner = local elasticity/set Preconditioner = AMG/' \
+      "Invalid value 'finite deformation' for the parameter 'quasi-static/Kinematics': its Newton corrections run on the matrix-free operator" $np
+  done
+  expect_error "$finite; $(echo "$newton" | sed 's/1e-9/0/')" \
+    "Invalid value '0' for the parameter 'quasi-static/Newton/Relative tolerance': give a tolerance between 0 and 1"
+  expect_error "$finite"'; s/  set No-fail boundary ids = 2, 3/  set No-fail boundary ids = 2, 3\n  set Nonlinear solver = dynamic relaxation\n  subsection Newton\n    set Maximum iterations = 5\n  end/; /subsection Linear solver/,/^end/d' \
+    "Invalid value '5' for the parameter 'quasi-static/Newton/Maximum iterations': this entry has no effect here: 'Nonlinear solver = dynamic relaxation' has its own test of convergence"
+  local surface='/subsection Linear solver/,/^end/d; s/set Dimension = 2/set Dimension = 2\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/; s/set Bond breaking = all beyond critical/set Bond breaking = off/; /Pre-cracks/d; /Fracture energy/d; /Reaction boundary/d; s/  set No-fail boundary ids = 2, 3//'
+  expect_error "$surface; s/set Load steps = 10/set Load steps = 1\n  set Kinematics = finite deformation/" \
+    "Invalid value 'finite deformation' for the parameter 'quasi-static/Kinematics': the boundary treatment 'surface nodes' solves small strains only"
+  # Load stepping itself needs a system that can step (was an internal
+  # error with the surface node method).
+  expect_error "$surface" \
+    "Invalid value '10' for the parameter 'quasi-static/Load steps': the boundary treatment 'surface nodes' solves one load only; set 'Load steps = 1'"
 }
 
 # Boxes: per-box Dirichlet components that do not match the boxes, name no

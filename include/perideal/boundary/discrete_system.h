@@ -138,6 +138,39 @@ namespace PeriDEAL
       set_dynamic_relaxation(const Solvers::DynamicRelaxation *solver);
 
       /**
+       * Whether solve_step() can solve with finite-deformation kinematics
+       * (false by default).
+       */
+      virtual bool
+      supports_finite_deformation() const;
+
+      /**
+       * The equilibrium of a finite-deformation step (set_finite_deformation())
+       * is solved by a modified Newton method: the residual
+       * \f$r = f_{\rm ext} + F(u)\f$ with the bond forces along the deformed
+       * bonds, and corrections \f$K\,\delta u = r\f$ with the linearised
+       * stiffness K of the intact bonds (the linear solver of the context,
+       * or dynamic relaxation of the nonlinear residual), until
+       * \f$\|r\| \le\f$ @p tolerance \f$\|b\|\f$ (b the right-hand side
+       * of the lifted linear system of the same step, the scale of the
+       * Krylov solvers' test), at most @p max_iterations corrections.
+       */
+      struct NewtonControl
+      {
+        double       tolerance      = 1e-8;
+        unsigned int max_iterations = 50;
+      };
+
+      /**
+       * Solve every later solve_step() with finite-deformation kinematics
+       * (the bond extension \f$|\xi + \eta| - |\xi|\f$, the forces along the
+       * deformed bond) and count and break bonds by their finite stretch.
+       * Only where supports_finite_deformation().
+       */
+      virtual void
+      set_finite_deformation(const NewtonControl &control);
+
+      /**
        * Equilibrium with the bonds intact now, at the boundary conditions
        * of the context's current time, warm-started from the last
        * solution; no log line (the solver report and the equilibrium

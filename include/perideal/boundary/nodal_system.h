@@ -76,6 +76,18 @@ namespace PeriDEAL
         dynamic_relaxation = solver;
       }
 
+      /// True: the matrix-free operator or dynamic relaxation
+      /// (nodal_system_fracture.cc).
+      bool
+      supports_finite_deformation() const override
+      {
+        return true;
+      }
+
+      void
+      set_finite_deformation(
+        const typename DiscreteSystem<dim>::NewtonControl &control) override;
+
       std::size_t
       break_critical_bonds(const double factor) override;
 
@@ -170,6 +182,16 @@ namespace PeriDEAL
       /// when set (on the matrix-free operator, which it then builds
       /// whatever 'Linear solver/Operator' says).
       const Solvers::DynamicRelaxation *dynamic_relaxation = nullptr;
+      /// Finite-deformation kinematics (set_finite_deformation()) and the
+      /// control of its modified Newton iteration.
+      bool                                        finite = false;
+      typename DiscreteSystem<dim>::NewtonControl newton;
+
+      /// The modified Newton iteration of a finite-deformation step on the
+      /// lifted system: corrections from the linear solver, x updated in
+      /// place; throws ExcNoConvergence, x then undefined.
+      Solvers::SolverReport
+      solve_newton(const SystemContext<dim> &context, VectorType &x);
     };
   } // namespace Boundary
 } // namespace PeriDEAL

@@ -190,6 +190,24 @@ namespace PeriDEAL
       apply(const VectorType &displacement, VectorType &force) const;
 
       /**
+       * apply() with the linearised kinematics whatever set_kinematics()
+       * chose, and without failure: \f$-K u\f$ with K the stiffness of the
+       * intact bonds at the reference configuration (the operator of the
+       * Krylov solves in a modified Newton method for finite deformation,
+       * and of the eigenvalue estimate of dynamic relaxation). The same
+       * passes, to the bit, as apply() without finite kinematics or failure.
+       */
+      void
+      apply_linearised(const VectorType &displacement, VectorType &force) const;
+
+      /// Whether apply() uses finite kinematics (set_kinematics()).
+      bool
+      finite_kinematics() const
+      {
+        return finite;
+      }
+
+      /**
        * apply(), and the elastic energy of the same state as
        * elastic_energy() gives it (to round-off; before
        * commit_broken_bonds(), whose bonds over their critical stretch this
@@ -588,14 +606,14 @@ namespace PeriDEAL
         double                        path_factor = 0;
         std::vector<unsigned int>     node_tile, slot_tile;
         // The nodes of each tile (tile_nodes[tile_first[t]...]).
-        std::vector<std::size_t>      tile_first;
-        std::vector<unsigned int>     tile_nodes;
-        std::vector<int>              node_neighbor;
-        std::vector<char>             chunk_due;
-        std::vector<double>           slot_margin, slot_drift;
-        std::vector<double>           previous_displacement, step_change;
-        std::vector<double>           tile_edge, tile_block;
-        std::size_t                   n_scanned = 0, n_possible = 0;
+        std::vector<std::size_t>  tile_first;
+        std::vector<unsigned int> tile_nodes;
+        std::vector<int>          node_neighbor;
+        std::vector<char>         chunk_due;
+        std::vector<double>       slot_margin, slot_drift;
+        std::vector<double>       previous_displacement, step_change;
+        std::vector<double>       tile_edge, tile_block;
+        std::size_t               n_scanned = 0, n_possible = 0;
       };
       SwitchTracking     tracking;
       CollocationRow     collocation_row;

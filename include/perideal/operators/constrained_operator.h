@@ -38,13 +38,28 @@ namespace PeriDEAL
       initialize(const BondOperator<dim>         &op,
                  const AffineConstraints<double> &constraints);
 
-      /// dst = K src, prescribed rows and columns eliminated.
+      /// dst = K src, prescribed rows and columns eliminated (K the
+      /// linearised stiffness, BondOperator::apply_linearised()).
       void
       vmult(VectorType &dst, const VectorType &src) const;
 
       /**
+       * The residual \f$r = b - A(x)\f$ of the homogeneous system with the
+       * right-hand side @p b of lift(). With the bond operator's linearised
+       * kinematics A is K (vmult()). With finite kinematics
+       * (BondOperator::set_kinematics()) A is the nonlinear operator
+       * \f$A(x)_f = -(F(x + g) - F(g))_f\f$ on free DoFs, so that
+       * \f$r_f = \mathrm{load}_f + F(x + g)_f\f$ (F from
+       * BondOperator::apply() at the whole displacement), and
+       * \f$K_{kk} x_k\f$ on a prescribed one.
+       */
+      void
+      residual(VectorType &r, const VectorType &x, const VectorType &b) const;
+
+      /**
        * The right-hand side of the homogeneous system: @p load (owned
-       * entries, e.g. \f$V_i b_i\f$) minus \f$K g\f$ on free DoFs, zero on
+       * entries, e.g. \f$V_i b_i\f$) minus \f$K g\f$ on free DoFs (plus
+       * \f$F(g)\f$, kept for residual(), with finite kinematics), zero on
        * prescribed ones. @p prescribed receives g (zero on free DoFs).
        */
       void
@@ -104,9 +119,11 @@ namespace PeriDEAL
       const BondOperator<dim> *op = nullptr;
       std::vector<bool>        prescribed_entry;
       std::vector<double>      prescribed_value;
-      VectorType               diag;
-      mutable VectorType       work;
-      mutable unsigned int     applications = 0;
+      /// F(g) on free DoFs, from lift() (finite kinematics).
+      mutable VectorType   prescribed_force;
+      VectorType           diag;
+      mutable VectorType   work;
+      mutable unsigned int applications = 0;
     };
   } // namespace Operators
 } // namespace PeriDEAL

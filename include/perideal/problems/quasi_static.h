@@ -97,12 +97,13 @@ namespace PeriDEAL
       };
 
       /// Whether the run steps the load (more than one step, bond
-      /// breaking, or dynamic relaxation, which only solve_step() offers).
+      /// breaking, dynamic relaxation or finite deformation, which only
+      /// solve_step() offers).
       bool
       steps_load() const
       {
         return n_load_steps > 1 || bond_breaking != BondBreaking::off ||
-               use_dynamic_relaxation;
+               use_dynamic_relaxation || finite_deformation;
       }
 
       /// Whether a reaction is written: 'Reaction boundary ids' or
@@ -190,6 +191,9 @@ namespace PeriDEAL
       /// 'Nonlinear solver = dynamic relaxation' and its settings.
       bool                       use_dynamic_relaxation = false;
       Solvers::DynamicRelaxation dynamic_relaxation;
+      /// 'Kinematics = finite deformation' and its Newton iteration.
+      bool finite_deformation = false;
+      typename Boundary::DiscreteSystem<dim>::NewtonControl newton;
 
       // State of a load-stepped run.
       /// Rows of the load-displacement CSV: step, time, reaction, broken

@@ -34,6 +34,10 @@ namespace PeriDEAL
      * matrix-free operator does not have). Should a mode the estimate
      * missed grow (the residual 1000 times the best so far), the run goes
      * back to the best iterate with twice the density, at most 20 times.
+     * A may be nonlinear (finite deformation): the residual is the
+     * operator's residual() and the eigenvalue estimate uses its
+     * linearisation vmult(); the fictitious density then bounds the
+     * tangent as long as it stays near K, and the restarts cover the rest.
      *
      * The test of convergence is the one of the Krylov solvers: the
      * residual \f$\|b - A x\|\f$ at most `Relative tolerance` times
@@ -56,8 +60,9 @@ namespace PeriDEAL
       parse_parameters(ParameterHandler &prm, const std::string &path);
 
       /**
-       * Solve A x = b from the start @p x, A @p op (with vmult() and
-       * diagonal() on the owned entries of @p x's layout). Collective.
+       * Solve A x = b from the start @p x, A @p op (with residual(r, x, b),
+       * the linearised vmult() and diagonal() on the owned entries of @p x's
+       * layout). Collective.
        */
       template <typename OperatorType, typename VectorType>
       SolverReport

@@ -19,7 +19,9 @@ namespace PeriDEAL
     struct SolverReport
     {
       std::string  method;
-      unsigned int iterations        = 0;
+      unsigned int iterations = 0;
+      /// Newton corrections of a nonlinear solve (0: a linear solve).
+      unsigned int corrections       = 0;
       double       relative_residual = 0;
       double       seconds           = 0;
     };
