@@ -43,6 +43,11 @@
 #          the same steps, times and broken bonds as the expected history
 #          of another input (the same problem with another solver), and
 #          reactions within the tolerance times the peak reaction;
+#      # check: held <nodes> <directions>
+#          (counted by hand from the geometry of the pre-cracks) the first
+#          step's progress line holds exactly <nodes> nodes without bonds
+#          and <directions> directions without stiffness (a node whose
+#          bonds left all lie across a direction), and the run goes on;
 #      # check: bitwise
 #          the CSV is byte-identical to EXPECTED.output (written on one
 #          process): the iterates do not depend on the partition;
@@ -133,6 +138,15 @@ if [ -n "$same" ]; then
     END { printf "against %s: %d of %d rows, same steps and broken bonds: %s, largest reaction difference %.2e of the peak (tolerance %g)\n", ARGV[1], k - 1, n - 1, bad ? "no" : "yes", m, tol
           exit !(!bad && k == n && m <= tol) }' "$other" "$csv" \
     || { echo "FAIL: the load-displacement curve differs from $other"; exit 1; }
+fi
+held=$(sed -n 's/^# check: held *//p' input.prm)
+if [ -n "$held" ]; then
+  set -- $held
+  first=$(grep -m1 "step 1, t = " log)
+  echo "$first" | grep -q ", $1 node(s) without bonds held" \
+    && echo "$first" | grep -q ", $2 direction(s) without stiffness held" \
+    || { echo "$first"; echo "FAIL: not $1 node(s) and $2 direction(s) held at step 1"; exit 1; }
+  echo "held at step 1: $1 node(s) without bonds, $2 direction(s) without stiffness"
 fi
 if grep -q "^# check: bitwise" input.prm; then
   cmp "$csv" "$expected" > /dev/null \
