@@ -92,7 +92,6 @@ namespace PeriDEAL
         held.set_inhomogeneity(dof, has_last ? last_displacement[dof] : 0.);
         return true;
       };
-      VectorType diagonal;
       bond_operator.initialize_dof_vector(diagonal);
       bond_operator.compute_diagonal(diagonal);
       n_isolated = 0;

@@ -180,6 +180,9 @@ namespace PeriDEAL
       VectorType last_displacement, last_force;
       /// Bond failure (setup_failure()): the critical stretch per node.
       std::vector<double> critical_stretch;
+      /// The bond operator's diagonal in the current bond state
+      /// (hold_isolated_nodes(); handed to the constrained operator).
+      VectorType diagonal;
       /// Nodes held because all their bonds broke, and DoFs of other nodes
       /// held because no intact bond gives them stiffness (all processes).
       unsigned int n_isolated = 0, n_held_dofs = 0;
