@@ -94,7 +94,7 @@ namespace PeriDEAL
       };
       bond_operator.initialize_dof_vector(diagonal);
       bond_operator.compute_diagonal(diagonal);
-      n_isolated = 0;
+      n_isolated  = 0;
       n_held_dofs = 0;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
