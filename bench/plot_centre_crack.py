@@ -1,6 +1,9 @@
 """Plots of bench/run_centre_crack.sh: the gap to LEFM against wall time,
-and wall time against the number of nodes, per model and solver."""
+and wall time against the number of nodes, per model and solver; with a
+tolerance study (centre_crack_tolerance.csv), the curve's difference from
+the tightest Newton run against wall time, per solver."""
 import csv
+import os
 import sys
 
 import matplotlib
@@ -12,6 +15,10 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 out = sys.argv[2]
 series = {}
 for r in rows:
+    # The a/W study (the tall plate) and the tolerance study are plotted
+    # apart.
+    if r["height_over_width"] != "1" or "_tol" in r["solver"]:
+        continue
     # The refinement at m = 3, and the m study at fixed delta / a (its
     # m = 3 point is the 100^2 run of the refinement).
     series.setdefault((r["model"], r["solver"]), []).append(r)
@@ -33,7 +40,8 @@ ax.set_xscale("log")
 ax.set_xlabel("wall time [s] (1 process)")
 ax.set_ylabel("|initiation load / LEFM - 1| [%]")
 ax.set_title("Centre-cracked plate: gap to LEFM")
-ax.legend(fontsize=7)
+if ax.get_legend_handles_labels()[0]:
+    ax.legend(fontsize=7)
 fig.tight_layout()
 fig.savefig(f"{out}/error_vs_time.png", dpi=150)
 
@@ -48,6 +56,35 @@ for (model, solver), rs in series.items():
 ax.set_xlabel("nodes")
 ax.set_ylabel("wall time [s] to complete failure")
 ax.set_title("Centre-cracked plate: time against size")
-ax.legend(fontsize=7)
+if ax.get_legend_handles_labels()[0]:
+    ax.legend(fontsize=7)
 fig.tight_layout()
 fig.savefig(f"{out}/time_vs_size.png", dpi=150)
+
+tolerance_csv = f"{out}/centre_crack_tolerance.csv"
+if os.path.exists(tolerance_csv):
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    rows = list(csv.DictReader(open(tolerance_csv)))
+    for cells in sorted({r["cells"] for r in rows}, key=int):
+        for solver in ("newton", "dynamic_relaxation"):
+            rs = [r for r in rows if r["cells"] == cells and r["solver"] == solver
+                  and r["same_bonds"] != "stopped"]
+            # The curve's difference: the larger of the peak's and the
+            # critical load's, floored for the log axis.
+            diff = [max(1e-5, abs(float(r["peak_difference_percent"])),
+                        abs(float(r["critical_difference_percent"] or 0)))
+                    for r in rs]
+            ax.plot([float(r["wall_seconds"]) for r in rs], diff, "o-",
+                    label=f"{cells}², {solver}")
+            for r, d in zip(rs, diff):
+                ax.annotate(r["tolerance"], (float(r["wall_seconds"]), d), fontsize=7)
+    ax.axhline(1, color="grey", ls="--", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time [s] to complete failure (1 process)")
+    ax.set_ylabel("peak, critical load vs tightest Newton [%]")
+    ax.set_title("Centre-cracked plate: solver tolerance, curve against time")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{out}/tolerance_vs_time.png", dpi=150)

@@ -135,6 +135,14 @@ namespace PeriDEAL
 
 
     template <int dim>
+    unsigned int
+    DiscreteSystem<dim>::n_held_dofs_without_stiffness() const
+    {
+      return 0;
+    }
+
+
+    template <int dim>
     Tensor<1, dim>
     DiscreteSystem<dim>::holding_force(const SystemContext<dim> &,
                                        const std::vector<bool> &) const

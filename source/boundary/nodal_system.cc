@@ -173,7 +173,10 @@ namespace PeriDEAL
     {
       TimerOutput::Scope scope(context.timer, "assembly");
       make_constraints_and_load(context);
-      constrained_operator.initialize(bond_operator, constraints);
+      constrained_operator.initialize(bond_operator,
+                                      constraints,
+                                      critical_stretch.empty() ? nullptr :
+                                                                 &diagonal);
       VectorType load_vector;
       constrained_operator.initialize_dof_vector(load_vector);
       for (const auto dof : context.dof_handler.locally_owned_dofs())

@@ -70,6 +70,12 @@ namespace PeriDEAL
     {
       // A node whose bonds all broke has a zero row: it is held where it
       // was (zero before the first solve). Its load, if any, is dropped.
+      // So is a direction in which no intact bond gives a node stiffness
+      // (its bonds left all lie across it, e.g. one row along x): a zero
+      // diagonal entry of K, exactly zero on a lattice, so the threshold
+      // (relative to the node's stiffest direction) only guards round-off.
+      // In that direction the bonds exert no force (small strain), so the
+      // hold costs no reaction.
       const auto               &nodes = context.nodes;
       AffineConstraints<double> held;
       held.reinit(nodes.relevant_dofs());
@@ -79,24 +85,40 @@ namespace PeriDEAL
           held.set_inhomogeneity(line.index, line.inhomogeneity);
         }
       const bool has_last = last_displacement.size() > 0;
-      n_isolated          = 0;
+      const auto hold     = [&](const types::global_dof_index dof) {
+        if (held.is_constrained(dof))
+          return false;
+        held.add_line(dof);
+        held.set_inhomogeneity(dof, has_last ? last_displacement[dof] : 0.);
+        return true;
+      };
+      bond_operator.initialize_dof_vector(diagonal);
+      bond_operator.compute_diagonal(diagonal);
+      n_isolated  = 0;
+      n_held_dofs = 0;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        if (context.neighbor_lists.n_bonds(i) > 0 &&
-            bond_state.n_broken(i) == context.neighbor_lists.n_bonds(i))
-          {
-            ++n_isolated;
-            for (const auto dof : nodes[i].dofs)
-              if (!held.is_constrained(dof))
-                {
-                  held.add_line(dof);
-                  held.set_inhomogeneity(dof,
-                                         has_last ? last_displacement[dof] :
-                                                    0.);
-                }
-          }
+        {
+          const unsigned int n_bonds = context.neighbor_lists.n_bonds(i);
+          if (n_bonds == 0)
+            continue;
+          if (bond_state.n_broken(i) == n_bonds)
+            {
+              ++n_isolated;
+              for (const auto dof : nodes[i].dofs)
+                hold(dof);
+              continue;
+            }
+          double stiffest = 0;
+          for (const auto dof : nodes[i].dofs)
+            stiffest = std::max(stiffest, diagonal[dof]);
+          for (const auto dof : nodes[i].dofs)
+            if (!(diagonal[dof] > 1e-12 * stiffest) && hold(dof))
+              ++n_held_dofs;
+        }
       held.close();
       constraints.copy_from(held);
-      n_isolated = Utilities::MPI::sum(n_isolated, context.communicator);
+      n_isolated  = Utilities::MPI::sum(n_isolated, context.communicator);
+      n_held_dofs = Utilities::MPI::sum(n_held_dofs, context.communicator);
     }
 
 
@@ -246,6 +268,14 @@ namespace PeriDEAL
     NodalSystem<dim>::n_isolated_nodes() const
     {
       return n_isolated;
+    }
+
+
+    template <int dim>
+    unsigned int
+    NodalSystem<dim>::n_held_dofs_without_stiffness() const
+    {
+      return n_held_dofs;
     }
 
 

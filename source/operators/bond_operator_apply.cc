@@ -231,17 +231,7 @@ namespace PeriDEAL
     BondOperator<dim>::apply_linearised(const VectorType &displacement,
                                         VectorType       &force) const
     {
-      copy_in(displacement);
-      if (state_based)
-        dilatation_pass();
-      force_pass();
-      if (has_collocation_rows())
-        collocation_pass();
-      double *values = force.begin();
-      layout.for_each_node(nodes->n_owned(), [&](const unsigned int i) {
-        for (unsigned int c = 0; c < dim; ++c)
-          values[layout.vector_index[i] + c] = f_slot[c][layout.slot[i]];
-      });
+      apply_passes<false>(displacement, force, true);
     }
 
 
@@ -297,10 +287,11 @@ namespace PeriDEAL
     template <bool with_energy>
     void
     BondOperator<dim>::apply_passes(const VectorType &displacement,
-                                    VectorType       &force) const
+                                    VectorType       &force,
+                                    const bool        linearised) const
     {
       copy_in(displacement);
-      if (finite)
+      if (finite && !linearised)
         {
           if (state_based)
             nonlinear_dilatation_pass<true>();
@@ -308,7 +299,7 @@ namespace PeriDEAL
           if (has_collocation_rows())
             collocation_pass();
         }
-      else if (with_failure)
+      else if (with_failure && !linearised)
         {
           if (state_based)
             nonlinear_dilatation_pass<false>();

@@ -10,7 +10,8 @@ namespace PeriDEAL
     void
     ConstrainedOperator<dim>::initialize(
       const BondOperator<dim>         &bond_operator,
-      const AffineConstraints<double> &constraints)
+      const AffineConstraints<double> &constraints,
+      const VectorType                *diagonal)
     {
       op                = &bond_operator;
       const auto &part  = *op->get_partitioner();
@@ -38,9 +39,19 @@ namespace PeriDEAL
                              "DoFs."));
       op->initialize_dof_vector(diag);
       op->initialize_dof_vector(work);
-      op->compute_diagonal(diag);
-      // A prescribed row keeps its diagonal; a row without bonds (an
-      // isolated node) would make K singular: it is reported by the caller.
+      if (diagonal != nullptr)
+        diag = *diagonal;
+      else
+        op->compute_diagonal(diag);
+      // A prescribed row keeps its diagonal, or 1 where it has none (a node
+      // held because its bonds broke): the row is decoupled and its entry
+      // of the lifted solution stays exactly zero (zero right-hand side),
+      // so the value only has to be positive for the diagonal
+      // preconditioners and dynamic relaxation. A free row without bonds
+      // would make K singular: it is reported by the solvers.
+      for (unsigned int k = 0; k < local; ++k)
+        if (prescribed_entry[k] && !(diag.local_element(k) > 0))
+          diag.local_element(k) = 1.;
       applications = 0;
     }
 

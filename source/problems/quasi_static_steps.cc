@@ -306,6 +306,9 @@ namespace PeriDEAL
           if (system->n_isolated_nodes() > 0)
             line << ", " << system->n_isolated_nodes()
                  << " node(s) without bonds held";
+          if (system->n_held_dofs_without_stiffness() > 0)
+            line << ", " << system->n_held_dofs_without_stiffness()
+                 << " direction(s) without stiffness held";
           if (has_reaction())
             line << ", reaction " << vector_text(&reaction[0], dim);
           const double elapsed = simulator.elapsed();

@@ -6,6 +6,7 @@
  * matrix-free operator and the layer systems).
  */
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/subscriptor.h>
 
 #include <deal.II/lac/diagonal_matrix.h>
@@ -143,15 +144,29 @@ namespace PeriDEAL
           return dim == 3 ? 6144 : 1536;
         }
 
+        /**
+         * Builds the hierarchy, or keeps the one built for the same local
+         * matrix: a load-stepped run solves with one local matrix hundreds
+         * of times, and ML's set-up was a third of the run on the 100²
+         * centre-cracked plate. The
+         * matrix is recognised by its address, size and Frobenius norm
+         * (collective; a pass over the entries, a small fraction of the
+         * set-up), the near-null space and the AMG settings. ML's set-up
+         * is deterministic, so the iterates are the same either way.
+         */
         void
         initialize(const OperatorForm,
                    const PreconditionerSetup &setup) override
         {
+          const TrilinosWrappers::SparseMatrix &matrix = *setup.local_matrix;
+          const Key                             key(setup);
+          // Decided together: the set-up is collective.
+          if (Utilities::MPI::min(amg != nullptr && key == built_for ? 1 : 0,
+                                  matrix.get_mpi_communicator()) == 1)
+            return;
           amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-          initialize_amg(*amg,
-                         *setup.local_matrix,
-                         setup.amg,
-                         setup.constant_modes);
+          initialize_amg(*amg, matrix, setup.amg, setup.constant_modes);
+          built_for = key;
         }
 
         void
@@ -167,14 +182,50 @@ namespace PeriDEAL
           amg->vmult(dst, src);
         }
 
+        /// Keeps the hierarchy for the next initialize() with the same
+        /// local matrix (the memory 'bytes_per_node' counts stays held).
         void
         clear() override
-        {
-          amg.reset();
-        }
+        {}
 
       private:
+        /// What a hierarchy was built for.
+        struct Key
+        {
+          Key() = default;
+
+          explicit Key(const PreconditionerSetup &setup)
+            : matrix(setup.local_matrix)
+            , rows(matrix->m())
+            , nonzeros(matrix->n_nonzero_elements())
+            , frobenius_norm(matrix->frobenius_norm())
+            , constant_modes(setup.constant_modes)
+            , smoother_sweeps(setup.amg.smoother_sweeps)
+            , aggregation_threshold(setup.amg.aggregation_threshold)
+          {}
+
+          const TrilinosWrappers::SparseMatrix *matrix         = nullptr;
+          types::global_dof_index               rows           = 0;
+          std::uint64_t                         nonzeros       = 0;
+          double                                frobenius_norm = 0;
+          std::vector<std::vector<bool>>        constant_modes;
+          unsigned int                          smoother_sweeps       = 0;
+          double                                aggregation_threshold = 0;
+
+          bool
+          operator==(const Key &other) const
+          {
+            return matrix == other.matrix && rows == other.rows &&
+                   nonzeros == other.nonzeros &&
+                   frobenius_norm == other.frobenius_norm &&
+                   constant_modes == other.constant_modes &&
+                   smoother_sweeps == other.smoother_sweeps &&
+                   aggregation_threshold == other.aggregation_threshold;
+          }
+        };
+
         std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+        Key                                                built_for;
       };
     } // namespace
   }   // namespace Solvers

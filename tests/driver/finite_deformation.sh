@@ -26,9 +26,9 @@
 # Each variant runs on NPROCS processes.
 set -u
 perideal="$1"; nprocs="$2"
+. "$(cd "$(dirname "$0")" && pwd)/../run_checks.sh"
 work="$(pwd)/finite_deformation.np${nprocs}"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fail() { echo "FAIL: $*"; exit 1; }
 
 # write NAME THETA E KINEMATICS: the input of one variant in NAME/input.prm.
@@ -98,12 +98,8 @@ PRM
 }
 run() {
   local name="$1"
-  if [ "$nprocs" -eq 1 ]; then
-    (cd "$name" && "$perideal" input.prm > log 2>&1)
-  else
-    (cd "$name" && mpirun --oversubscribe -np "$nprocs" "$perideal" input.prm \
-       --threads 1 > log 2>&1)
-  fi || { cat "$name/log"; fail "the run '$name' failed"; }
+  run_perideal "$perideal" "$nprocs" "$name" \
+    || { cat "$name/log"; fail "the run '$name' failed"; }
 }
 # The last reaction (x y) of a variant.
 reaction() { tail -1 "$1/output/load_displacement.csv" | awk -F, '{ printf "%.17g %.17g", $3, $4 }'; }

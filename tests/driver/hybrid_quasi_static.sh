@@ -28,9 +28,9 @@
 # the standard nodes' dilatations also enter the collocation nodes' forces.
 set -u
 perideal="$1"; nprocs="$2"; input="$3"
+. "$(cd "$(dirname "$0")" && pwd)/../run_checks.sh"
 work="$(pwd)/hybrid_quasi_static.$(basename "$input" .prm).np${nprocs}"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fail() { echo "FAIL: $*"; exit 1; }
 
 # run NAME SED_SCRIPT: the input edited by SED_SCRIPT, in directory NAME.
@@ -38,12 +38,8 @@ run() {
   local name="$1" edit="$2"
   mkdir -p "$name"
   sed -e "$edit" -e 's/set Write VTU = true/set Write VTU = false/' "$input" > "$name/input.prm"
-  if [ "$nprocs" -eq 1 ]; then
-    (cd "$name" && "$perideal" input.prm > log 2>&1)
-  else
-    (cd "$name" && mpirun --oversubscribe -np "$nprocs" "$perideal" input.prm \
-       --threads 1 > log 2>&1)
-  fi || { cat "$name/log"; fail "the run '$name' failed"; }
+  run_perideal "$perideal" "$nprocs" "$name" \
+    || { cat "$name/log"; fail "the run '$name' failed"; }
 }
 hybrid() {
   printf 's/set Scheme = collocation/set Scheme = hybrid\\n  subsection hybrid\\n    set Configuration = fixed\\n%s  end/' "$1"

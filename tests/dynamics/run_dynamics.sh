@@ -66,28 +66,15 @@
 #    verification).
 set -u
 perideal="$1"; numdiff="$2"; nprocs="$3"; input="$4"; expected="$5"
+. "$(cd "$(dirname "$0")" && pwd)/../run_checks.sh"
 name=$(basename "$input" .prm)
 work="$(pwd)/${name}.np${nprocs}"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 cp "$input" input.prm
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-if [ "$nprocs" -eq 1 ]; then
-  "$perideal" input.prm > log 2>&1
-else
-  mpirun --oversubscribe -np "$nprocs" "$perideal" input.prm --threads 1 > log 2>&1
-fi
+run_perideal "$perideal" "$nprocs"
 rc=$?
 [ $rc -eq 0 ] || { cat log; echo "FAIL: perideal exited with $rc"; exit 1; }
-
-dir=$(sed -n 's/^ *set Directory *= *//p' input.prm); dir=${dir:-output}
-pvd="$dir/solution.pvd"
-[ -f "$pvd" ] || { cat log; echo "FAIL: no $pvd"; exit 1; }
-for record in $(sed -n 's/.*file="\([^"]*\)".*/\1/p' "$pvd"); do
-  [ -f "$dir/$record" ] || { echo "FAIL: $record named in $pvd is missing"; exit 1; }
-  pieces=$(grep -c "<Piece" "$dir/$record")
-  [ "$pieces" -eq "$nprocs" ] || { echo "FAIL: $record has $pieces pieces"; exit 1; }
-done
-ls "$dir"/*.tmp > /dev/null 2>&1 && { echo "FAIL: temporary files remain"; exit 1; }
+check_output_series "$nprocs"
 csv="$dir/energies.csv"
 [ -f "$csv" ] || { echo "FAIL: no $csv"; exit 1; }
 

@@ -204,6 +204,12 @@ namespace PeriDEAL
       virtual unsigned int
       n_isolated_nodes() const;
 
+      /// The DoFs of other nodes held because no intact bond gives them
+      /// stiffness (the bonds left all lie across that direction), on all
+      /// processes.
+      virtual unsigned int
+      n_held_dofs_without_stiffness() const;
+
       /**
        * The force that holds the owned body nodes flagged in @p flagged
        * (one flag per owned node) in the last solution: minus the sum of

@@ -97,6 +97,9 @@ namespace PeriDEAL
       unsigned int
       n_isolated_nodes() const override;
 
+      unsigned int
+      n_held_dofs_without_stiffness() const override;
+
       Tensor<1, dim>
       holding_force(const SystemContext<dim> &context,
                     const std::vector<bool>  &flagged) const override;
@@ -114,9 +117,10 @@ namespace PeriDEAL
       void
       check_rigid_motions(const SystemContext<dim> &context) const;
 
-      /// Hold the owned nodes whose bonds all broke at their last
+      /// Hold the owned nodes whose bonds all broke, and the directions of
+      /// owned nodes in which no intact bond gives stiffness, at their last
       /// displacement: constraints added to those of the boundary
-      /// conditions.
+      /// conditions. Collective.
       void
       hold_isolated_nodes(const SystemContext<dim> &context);
 
@@ -176,8 +180,12 @@ namespace PeriDEAL
       VectorType last_displacement, last_force;
       /// Bond failure (setup_failure()): the critical stretch per node.
       std::vector<double> critical_stretch;
-      /// Owned nodes held because all their bonds broke.
-      unsigned int n_isolated = 0;
+      /// The bond operator's diagonal in the current bond state
+      /// (hold_isolated_nodes(); handed to the constrained operator).
+      VectorType diagonal;
+      /// Nodes held because all their bonds broke, and DoFs of other nodes
+      /// held because no intact bond gives them stiffness (all processes).
+      unsigned int n_isolated = 0, n_held_dofs = 0;
       /// solve_step() relaxes with this solver instead of the linear one
       /// when set (on the matrix-free operator, which it then builds
       /// whatever 'Linear solver/Operator' says).

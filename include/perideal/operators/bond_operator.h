@@ -836,10 +836,14 @@ namespace PeriDEAL
       void
       nonlinear_force_pass() const;
 
-      /// The force passes of apply() and the copy into @p force.
+      /// The force passes of apply() and the copy into @p force; with
+      /// @p linearised, the linear passes whatever the kinematics and
+      /// failure (apply_linearised()).
       template <bool with_energy>
       void
-      apply_passes(const VectorType &displacement, VectorType &force) const;
+      apply_passes(const VectorType &displacement,
+                   VectorType       &force,
+                   const bool        linearised = false) const;
 
       /// Record bonds (node, neighbour) found over their critical stretch
       /// (thread-safe; one lock per subrange in which bonds failed).

@@ -32,11 +32,14 @@ namespace PeriDEAL
 
       /**
        * @p constraints holds identity constraints u_k = g_k only (over the
-       * locally relevant DoFs).
+       * locally relevant DoFs). @p diagonal: BondOperator::compute_diagonal()
+       * of @p op in its current bond state, where the caller has it (it is
+       * copied instead of computed again).
        */
       void
       initialize(const BondOperator<dim>         &op,
-                 const AffineConstraints<double> &constraints);
+                 const AffineConstraints<double> &constraints,
+                 const VectorType                *diagonal = nullptr);
 
       /// dst = K src, prescribed rows and columns eliminated (K the
       /// linearised stiffness, BondOperator::apply_linearised()).
