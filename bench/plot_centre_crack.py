@@ -11,6 +11,19 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+
+
+def finish(fig, ax, xlabel, ylabel, title, name):
+    """Labels, the legend where there are series, and the PNG."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{out}/{name}", dpi=150)
+
+
 rows = list(csv.DictReader(open(sys.argv[1])))
 out = sys.argv[2]
 series = {}
@@ -37,13 +50,8 @@ for (model, solver), rs in series.items():
                     abs(float(r["gap_percent"]))), fontsize=7)
 ax.axhline(5, color="grey", ls="--", lw=0.8)
 ax.set_xscale("log")
-ax.set_xlabel("wall time [s] (1 process)")
-ax.set_ylabel("|initiation load / LEFM - 1| [%]")
-ax.set_title("Centre-cracked plate: gap to LEFM")
-if ax.get_legend_handles_labels()[0]:
-    ax.legend(fontsize=7)
-fig.tight_layout()
-fig.savefig(f"{out}/error_vs_time.png", dpi=150)
+finish(fig, ax, "wall time [s] (1 process)", "|initiation load / LEFM - 1| [%]",
+       "Centre-cracked plate: gap to LEFM", "error_vs_time.png")
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
 for (model, solver), rs in series.items():
@@ -53,13 +61,8 @@ for (model, solver), rs in series.items():
     ax.loglog([int(r["nodes"]) for r in rs],
               [float(r["wall_seconds"]) for r in rs], "o-",
               label=f"{model}, {solver}")
-ax.set_xlabel("nodes")
-ax.set_ylabel("wall time [s] to complete failure")
-ax.set_title("Centre-cracked plate: time against size")
-if ax.get_legend_handles_labels()[0]:
-    ax.legend(fontsize=7)
-fig.tight_layout()
-fig.savefig(f"{out}/time_vs_size.png", dpi=150)
+finish(fig, ax, "nodes", "wall time [s] to complete failure",
+       "Centre-cracked plate: time against size", "time_vs_size.png")
 
 tolerance_csv = f"{out}/centre_crack_tolerance.csv"
 if os.path.exists(tolerance_csv):
@@ -81,10 +84,7 @@ if os.path.exists(tolerance_csv):
     ax.axhline(1, color="grey", ls="--", lw=0.8)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time [s] to complete failure (1 process)")
-    ax.set_ylabel("peak, critical load vs tightest Newton [%]")
-    ax.set_title("Centre-cracked plate: solver tolerance, curve against time")
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{out}/tolerance_vs_time.png", dpi=150)
+    finish(fig, ax, "wall time [s] to complete failure (1 process)",
+           "peak, critical load vs tightest Newton [%]",
+           "Centre-cracked plate: solver tolerance, curve against time",
+           "tolerance_vs_time.png")
