@@ -106,7 +106,7 @@ for n in $dr_sizes; do
   b="$out/logs/pmb_dynamic_relaxation_$n/load_displacement.csv"
   [ -f "$a" ] || continue
   if diff <(cut -d, -f1,2,5 "$a") <(cut -d, -f1,2,5 "$b") > /dev/null; then
-    awk -F, -v n="$n" 'NR > 1 && $1 == "pmb" && $3 == n { t[$2] = $11 }
+    awk -F, -v n="$n" 'NR > 1 && $1 == "pmb" && $3 == n && $14 == 3 { t[$2] = $11 }
       END { printf "W/h = %s: dynamic relaxation breaks the same bonds at every step; Newton %.3g s, dynamic relaxation %.3g s (%.1fx)\n", n, t["newton"], t["dynamic_relaxation"], t["dynamic_relaxation"] / t["newton"] }' "$csv"
   else
     echo "FAIL: at W/h = $n dynamic relaxation and Newton break different bonds"; status=1
