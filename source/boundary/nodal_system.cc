@@ -189,27 +189,60 @@ namespace PeriDEAL
     void
     NodalSystem<dim>::prepare_preconditioner(const SystemContext<dim> &context)
     {
-      if (preconditioner_ready)
+      const bool fracture = !critical_stretch.empty();
+      if (preconditioner_ready && !fracture)
         return;
-      preconditioner_ready = true;
-      constant_modes.clear();
       if (!context.linear_solver.preconditioner().needs_local_matrix())
-        return;
+        {
+          preconditioner_ready = true;
+          return;
+        }
       TimerOutput::Scope scope(context.timer, "preconditioner setup");
       // Nodes perturbed in their cells: the preconditioner's finite
       // elements live on the cells, whose centres may still form a
       // lattice.
-      Discretization::Lattice<dim> cells;
-      if (!context.neighbor_lists.lattice().is_uniform())
-        cells.reinit(context.nodes, true);
-      Operators::LocalElasticityOperator<dim>::assemble(
-        context.nodes,
-        context.neighbor_lists.lattice().is_uniform() ?
-          context.neighbor_lists.lattice() :
-          cells,
-        context.model,
-        constraints,
-        local_matrix);
+      const bool uniform = context.neighbor_lists.lattice().is_uniform();
+      if (!uniform && !preconditioner_ready)
+        preconditioner_cells.reinit(context.nodes, true);
+      const auto &lattice =
+        uniform ? context.neighbor_lists.lattice() : preconditioner_cells;
+      // With bond failure the local matrix has the cracks too (its dual
+      // cubes cut where a bond between their corners is broken): the
+      // intact one misses the crack-opening modes, which then cost CG
+      // iterations. It is assembled again (and the multigrid hierarchy
+      // rebuilt) when the cut cubes have grown by a tenth, not at every
+      // broken bond: a run to failure re-solves hundreds of times.
+      std::vector<std::uint32_t> broken_masks;
+      std::size_t                n_cut = 0;
+      if (fracture)
+        {
+          VectorType exchanged;
+          bond_operator.initialize_dof_vector(exchanged);
+          broken_masks =
+            Operators::LocalElasticityOperator<dim>::broken_neighbor_masks(
+              context.nodes,
+              lattice,
+              context.neighbor_lists,
+              bond_state,
+              exchanged);
+          n_cut =
+            Operators::LocalElasticityOperator<dim>::n_cut_cubes(context.nodes,
+                                                                 lattice,
+                                                                 broken_masks);
+          if (preconditioner_ready && n_cut <= cut_cubes_built * 11 / 10)
+            return;
+        }
+      preconditioner_ready = true;
+      cut_cubes_built      = n_cut;
+      Operators::LocalElasticityOperator<dim>::assemble(context.nodes,
+                                                        lattice,
+                                                        context.model,
+                                                        constraints,
+                                                        local_matrix,
+                                                        fracture ?
+                                                          &broken_masks :
+                                                          nullptr);
+      constant_modes.clear();
       DoFTools::extract_constant_modes(context.dof_handler,
                                        ComponentMask(dim, true),
                                        constant_modes);

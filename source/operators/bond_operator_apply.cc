@@ -355,8 +355,7 @@ namespace PeriDEAL
         {
           // On the lattice every bond's constants are the stencil's:
           // g_ij = g_k m_0 / m_i, and g_ji = g_k m_0 / m_j (w_ji = w_ij).
-          const double m0      = stencil_weighted_volume;
-          const auto  &lattice = lists->lattice();
+          const double m0 = stencil_weighted_volume;
           parallel::apply_to_subranges(
             0u,
             nodes->n_owned(),
@@ -403,14 +402,15 @@ namespace PeriDEAL
                         }
                       continue;
                     }
-                  const double   s_i = s_slot[layout.slot[i]];
-                  Tensor<1, dim> G, a_sum, diag;
-                  auto           add = [&](const unsigned int k) {
-                    std::array<std::int64_t, dim> y = lattice.coordinates(i);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      y[d] += lists->stencil()[k].offset[d];
-                    const unsigned int j   = lattice.node_at(y);
-                    const double       s_j = s_slot[layout.slot[j]];
+                  const std::size_t si  = layout.slot[i];
+                  const double      s_i = s_slot[si];
+                  Tensor<1, dim>    G, a_sum, diag;
+                  auto              add = [&](const unsigned int k) {
+                    // The neighbour's slot from the stencil's slot offset
+                    // (no lattice look-up per bond).
+                    const std::size_t  sj = si + layout.stencil_offset[k];
+                    const unsigned int j = layout.node_of_slot(sj);
+                    const double       s_j = s_slot[sj];
                     for (unsigned int c = 0; c < dim; ++c)
                       {
                         const double n_c = stencil.n[c][k];

@@ -2,10 +2,12 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
 
 #include <perideal/base/exceptions.h>
 #include <perideal/operators/local_elasticity_operator.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace PeriDEAL
@@ -63,6 +65,113 @@ namespace PeriDEAL
     }
 
 
+    namespace
+    {
+      /// The bit of the lattice neighbour at @p offset (each entry -1, 0
+      /// or 1, not all 0) in the masks: its index among the 3^dim offsets
+      /// with the centre left out; -1 for any other offset.
+      template <int dim>
+      int
+      neighbor_bit(const std::array<std::int64_t, dim> &offset)
+      {
+        int index = 0, scale = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            if (offset[d] < -1 || offset[d] > 1)
+              return -1;
+            index += int(offset[d] + 1) * scale;
+            scale *= 3;
+          }
+        const int centre = (scale - 1) / 2;
+        return index == centre ? -1 : index < centre ? index : index - 1;
+      }
+
+
+      /// Whether a dual cube is cut in two: every bond between its corners
+      /// on the two sides of one of its mid-planes broken (corner[b]: the
+      /// node at vertex b; one end's mask tells, since BondState breaks
+      /// both). A cube with only some of those broken keeps its stiffness:
+      /// the intact bonds still hold its corners together.
+      template <int dim, typename Corners>
+      bool
+      cube_is_cut(const Corners                    &corner,
+                  const std::vector<std::uint32_t> &masks)
+      {
+        constexpr unsigned int n_vertices = 1u << dim;
+        bool                   any        = false;
+        for (unsigned int a = 0; a < n_vertices; ++a)
+          any = any || masks[corner[a]] != 0;
+        if (!any)
+          return false;
+        for (unsigned int plane = 0; plane < dim; ++plane)
+          {
+            bool separated = true;
+            for (unsigned int a = 0; a < n_vertices && separated; ++a)
+              if (((a >> plane) & 1) == 0)
+                for (unsigned int b = 0; b < n_vertices && separated; ++b)
+                  if ((b >> plane) & 1)
+                    {
+                      std::array<std::int64_t, dim> offset;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        offset[d] = int((b >> d) & 1) - int((a >> d) & 1);
+                      separated =
+                        (masks[corner[a]] >> neighbor_bit<dim>(offset)) & 1u;
+                    }
+            if (separated)
+              return true;
+          }
+        return false;
+      }
+    } // namespace
+
+
+    template <int dim>
+    std::vector<std::uint32_t>
+    LocalElasticityOperator<dim>::broken_neighbor_masks(
+      const Discretization::NodeSet<dim>         &nodes,
+      const Discretization::Lattice<dim>         &lattice,
+      const Discretization::NeighborList<dim>    &lists,
+      const Discretization::BondState<dim>       &bonds,
+      LinearAlgebra::distributed::Vector<double> &exchanged)
+    {
+      // The owners' masks, sent to the off-process copies through the
+      // first DoF of each node (the bonds are broken in both directions
+      // after BondState::synchronize(), so either end's mask would do; the
+      // owner's is the one every process has).
+      exchanged = 0;
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          if (!bonds.any_broken(i))
+            continue;
+          std::uint32_t mask = 0;
+          const auto   &x    = lattice.coordinates(i);
+          for (unsigned int k = 0; k < lists.n_bonds(i); ++k)
+            if (bonds.is_broken(i, k))
+              {
+                auto y = lattice.coordinates(bonds.neighbor(i, k));
+                for (unsigned int d = 0; d < dim; ++d)
+                  y[d] -= x[d];
+                const int bit = neighbor_bit<dim>(y);
+                if (bit >= 0)
+                  mask |= std::uint32_t(1) << bit;
+              }
+          exchanged[nodes[i].dofs[0]] = mask;
+        }
+      exchanged.update_ghost_values();
+      const auto                &partitioner = *exchanged.get_partitioner();
+      std::vector<std::uint32_t> masks(nodes.size(), 0);
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const auto dof = nodes[i].dofs[0];
+          if (partitioner.in_local_range(dof) ||
+              partitioner.is_ghost_entry(dof))
+            masks[i] = static_cast<std::uint32_t>(exchanged(dof));
+        }
+      exchanged.zero_out_ghost_values();
+      return masks;
+    }
+
+
     template <int dim>
     void
     LocalElasticityOperator<dim>::assemble(
@@ -70,7 +179,8 @@ namespace PeriDEAL
       const Discretization::Lattice<dim> &lattice,
       const Models::Model<dim>           &model,
       const AffineConstraints<double>    &constraints,
-      TrilinosWrappers::SparseMatrix     &matrix)
+      TrilinosWrappers::SparseMatrix     &matrix,
+      const std::vector<std::uint32_t>   *broken_masks)
     {
       AssertThrow(lattice.is_uniform(),
                   ExcMessage("The local elasticity preconditioner needs a "
@@ -112,6 +222,16 @@ namespace PeriDEAL
           }
       };
 
+      // A dual cube is cut when a bond between two of its corners is
+      // broken: its stiffness is scaled by cut_cube_factor, so that the
+      // preconditioner's elasticity has the cracks the PD bonds have.
+      const auto cube_factor = [&](const auto &corner) {
+        return broken_masks != nullptr &&
+                   cube_is_cut<dim>(corner, *broken_masks) ?
+                 cut_cube_factor :
+                 1.;
+      };
+
       DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         for (unsigned int p = 0; p < dim; ++p)
@@ -139,7 +259,8 @@ namespace PeriDEAL
             const auto row      = nodes[i].dofs[p];
             double     diagonal = 0;
             for_each_cube(i, [&](const unsigned int a, const auto &corner) {
-              diagonal += k(a * dim + p, a * dim + p);
+              const double factor = cube_factor(corner);
+              diagonal += factor * k(a * dim + p, a * dim + p);
               if (constraints.is_constrained(row))
                 return;
               for (unsigned int b = 0; b < n_vertices; ++b)
@@ -147,12 +268,52 @@ namespace PeriDEAL
                   {
                     const auto col = nodes[corner[b]].dofs[r];
                     if (col != row && !constraints.is_constrained(col))
-                      matrix.add(row, col, k(a * dim + p, b * dim + r));
+                      matrix.add(row,
+                                 col,
+                                 factor * k(a * dim + p, b * dim + r));
                   }
             });
             matrix.add(row, row, diagonal > 0 ? diagonal : bulk_diagonal);
           }
       matrix.compress(VectorOperation::add);
+    }
+
+
+    template <int dim>
+    std::size_t
+    LocalElasticityOperator<dim>::n_cut_cubes(
+      const Discretization::NodeSet<dim> &nodes,
+      const Discretization::Lattice<dim> &lattice,
+      const std::vector<std::uint32_t>   &broken_masks)
+    {
+      // Only the cubes with a corner whose mask is not empty can be cut:
+      // those are the cubes x_i - a of such nodes i (a a vertex), each
+      // counted where its lower corner is owned.
+      constexpr unsigned int n_vertices = 1u << dim;
+      std::vector<int>       lower_corners;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        if (broken_masks[i] != 0)
+          for (unsigned int a = 0; a < n_vertices; ++a)
+            {
+              std::array<int, n_vertices> corner;
+              bool                        complete = true;
+              for (unsigned int b = 0; b < n_vertices && complete; ++b)
+                {
+                  auto y = lattice.coordinates(i);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    y[d] += int((b >> d) & 1) - int((a >> d) & 1);
+                  corner[b] = lattice.node_at(y);
+                  complete  = corner[b] >= 0;
+                }
+              if (complete && corner[0] < int(nodes.n_owned()) &&
+                  cube_is_cut<dim>(corner, broken_masks))
+                lower_corners.push_back(corner[0]);
+            }
+      std::sort(lower_corners.begin(), lower_corners.end());
+      const std::size_t n_cut =
+        std::unique(lower_corners.begin(), lower_corners.end()) -
+        lower_corners.begin();
+      return Utilities::MPI::sum(n_cut, nodes.get_communicator());
     }
 
 

@@ -113,17 +113,54 @@ namespace PeriDEAL
       };
 
 
+      /// 'local elasticity/PD Jacobi weight': its name and default.
+      constexpr const char *jacobi_weight_entry   = "PD Jacobi weight";
+      constexpr double      jacobi_weight_default = 0.3;
+
       /**
        * ML algebraic multigrid on the local elasticity operator: classical
        * elasticity on the same nodes, whose iteration counts stay bounded
-       * as the grid is refined (uniform grids).
+       * as the grid is refined (uniform grids). For the matrix-free
+       * operator a Jacobi term on the PD operator's exact diagonal D is
+       * added: \f$P^{-1} = M + \omega D^{-1}\f$, with M the V-cycle.
+       *
+       * Why the sum: at wavelengths below the horizon the PD stiffness
+       * saturates while the local one grows like \f$1/h^2\f$, so M A is
+       * small there (the smallest eigenvalues of the preconditioned
+       * operator, which set the CG iteration count); \f$D^{-1} A\f$ is of
+       * order one exactly there and small for smooth modes, where M A is
+       * about one. The sum is symmetric positive definite and costs a
+       * vector operation; \f$\omega = 0.3\f$ keeps the largest eigenvalue
+       * (at most about \f$1 + 2\omega\f$) near one. On the PMB
+       * centre-cracked plate it cut the CG iterations of a run to failure
+       * by 24 % (100²) and 28 % (200²) with the same load-displacement
+       * curve (doc/quasi-static-fracture.md).
        */
       class LocalElasticity : public Preconditioner
       {
       public:
         static void
-        declare_parameters(ParameterHandler &)
-        {}
+        declare_parameters(ParameterHandler &prm)
+        {
+          prm.declare_entry(
+            jacobi_weight_entry,
+            "0.3",
+            Patterns::Double(0, 2),
+            "Weight w of the Jacobi term on the exact diagonal D of the "
+            "matrix-free PD operator, added to the V-cycle M on the local "
+            "elasticity matrix: P^-1 = M + w D^-1. It supplies what "
+            "classical elasticity lacks at wavelengths below the horizon "
+            "(fewer CG iterations for a vector operation each); 0: the "
+            "V-cycle alone. Only for the matrix-free operator (the layer "
+            "operators of the boundary treatments have no diagonal: leave "
+            "the default there).");
+        }
+
+        void
+        parse_parameters(ParameterHandler &prm) override
+        {
+          jacobi_weight = prm.get_double(jacobi_weight_entry);
+        }
 
         bool
         supports(const OperatorForm form) const override
@@ -155,9 +192,23 @@ namespace PeriDEAL
          * is deterministic, so the iterates are the same either way.
          */
         void
-        initialize(const OperatorForm,
+        initialize(const OperatorForm         form,
                    const PreconditionerSetup &setup) override
         {
+          AssertThrow(
+            form == OperatorForm::matrix_free ||
+              jacobi_weight == jacobi_weight_default,
+            ExcInvalidInput("Linear solver/local elasticity/" +
+                              std::string(jacobi_weight_entry),
+                            format_number(jacobi_weight),
+                            "the operator of this boundary treatment has no "
+                            "diagonal, so the Jacobi term applies only to the "
+                            "matrix-free operator (boundary treatment 'none'): "
+                            "remove the entry"));
+          inverse_diagonal =
+            form == OperatorForm::matrix_free && jacobi_weight > 0 ?
+              setup.inverse_diagonal :
+              nullptr;
           const TrilinosWrappers::SparseMatrix &matrix = *setup.local_matrix;
           const Key                             key(setup);
           // Decided together: the set-up is collective.
@@ -173,6 +224,15 @@ namespace PeriDEAL
         vmult(VectorType &dst, const VectorType &src) const override
         {
           amg->vmult(dst, src);
+          if (inverse_diagonal == nullptr)
+            return;
+          const double      w = jacobi_weight;
+          const double     *d = inverse_diagonal->begin();
+          const double     *b = src.begin();
+          double           *x = dst.begin();
+          const std::size_t n = dst.locally_owned_size();
+          for (std::size_t k = 0; k < n; ++k)
+            x[k] += w * d[k] * b[k];
         }
 
         void
@@ -186,7 +246,9 @@ namespace PeriDEAL
         /// local matrix (the memory 'bytes_per_node' counts stays held).
         void
         clear() override
-        {}
+        {
+          inverse_diagonal = nullptr;
+        }
 
       private:
         /// What a hierarchy was built for.
@@ -226,6 +288,8 @@ namespace PeriDEAL
 
         std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
         Key                                                built_for;
+        double            jacobi_weight    = jacobi_weight_default;
+        const VectorType *inverse_diagonal = nullptr;
       };
     } // namespace
   }   // namespace Solvers
@@ -242,5 +306,6 @@ PERIDEAL_REGISTER_PRECONDITIONER(
   "local elasticity",
   "ML algebraic multigrid on classical elasticity discretised on the same "
   "nodes (Q1 on the dual grid, the same Dirichlet layers), for the "
-  "matrix-free operator and the layer systems; iteration counts stay "
-  "bounded as h shrinks (uniform grids).")
+  "matrix-free operator (plus a Jacobi term on its diagonal, 'PD Jacobi "
+  "weight') and the layer systems; iteration counts stay bounded as h "
+  "shrinks (uniform grids).")

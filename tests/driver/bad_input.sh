@@ -168,6 +168,10 @@ group_solvers() {
     "Invalid value 'CG' for the parameter 'Linear solver/Method'"
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = Jacobi\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
     "Invalid value 'Jacobi' for the parameter 'Linear solver/Preconditioner'" 2
+  # The Jacobi term of 'local elasticity' needs the operator's diagonal,
+  # which the layer operators do not form.
+  expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = local elasticity\n  subsection local elasticity\n    set PD Jacobi weight = 0.5\n  end\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
+    "Invalid value '0.5' for the parameter 'Linear solver/local elasticity/PD Jacobi weight': the operator of this boundary treatment has no diagonal" 2
   unnamed="not an input error: a solve that did not converge (it names 'Linear solver/Relative tolerance' and its value unquoted)" \
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\n  set Maximum iterations = 3\nend/' \
     "did not converge: after 3 iterations" 2

@@ -176,6 +176,13 @@ namespace PeriDEAL
       VectorType                     step_rhs, step_prescribed, free_solution;
       bool                           preconditioner_ready = false;
       std::vector<std::vector<bool>> constant_modes;
+      /// The preconditioner's dual grid where the nodes are perturbed in
+      /// their cells (empty on a uniform grid, which has its own).
+      Discretization::Lattice<dim> preconditioner_cells;
+      /// Bond failure: the dual cubes that the local matrix has cut (all
+      /// processes together), to decide when the cracks have grown enough
+      /// to assemble it again.
+      std::size_t cut_cubes_built = 0;
       /// The last solution (ghosted) and its internal forces.
       VectorType last_displacement, last_force;
       /// Bond failure (setup_failure()): the critical stretch per node.

@@ -3,12 +3,16 @@
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
+#include <perideal/discretization/bond_state.h>
 #include <perideal/discretization/lattice.h>
+#include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace PeriDEAL
@@ -52,7 +56,42 @@ namespace PeriDEAL
                const Discretization::Lattice<dim> &lattice,
                const Models::Model<dim>           &model,
                const AffineConstraints<double>    &constraints,
-               TrilinosWrappers::SparseMatrix     &matrix);
+               TrilinosWrappers::SparseMatrix     &matrix,
+               const std::vector<std::uint32_t>   *broken_masks = nullptr);
+
+      /**
+       * The broken bonds between lattice neighbours, for assemble() to cut
+       * the dual cubes a crack runs through: per node of @p nodes (owned
+       * and off-process), bit b set when its bond to the lattice neighbour
+       * at offset b in {-1, 0, 1}^dim (the 3^dim - 1 offsets in
+       * lexicographic order, x fastest, the centre left out) is broken.
+       * Collective: the masks of off-process nodes come from their owners
+       * through @p exchanged, a vector with the DoF layout (owned DoFs and
+       * the ghosts of the off-process nodes next to owned ones; its values
+       * are overwritten). Nodes outside its ghosts get empty masks.
+       */
+      static std::vector<std::uint32_t>
+      broken_neighbor_masks(
+        const Discretization::NodeSet<dim>         &nodes,
+        const Discretization::Lattice<dim>         &lattice,
+        const Discretization::NeighborList<dim>    &lists,
+        const Discretization::BondState<dim>       &bonds,
+        LinearAlgebra::distributed::Vector<double> &exchanged);
+
+      /// The number of dual cubes cut by @p broken_masks whose lower
+      /// corner is owned here (all processes together; collective).
+      static std::size_t
+      n_cut_cubes(const Discretization::NodeSet<dim> &nodes,
+                  const Discretization::Lattice<dim> &lattice,
+                  const std::vector<std::uint32_t>   &broken_masks);
+
+      /**
+       * The stiffness factor of a cut dual cube: below the algebraic
+       * multigrid's aggregation threshold, so that no aggregate spans the
+       * crack, and positive, so that a piece the cracks cut off keeps a
+       * regular matrix.
+       */
+      static constexpr double cut_cube_factor = 1e-6;
 
       /**
        * The \f$Q_1\f$ element stiffness of a cube of side @p h, row and
