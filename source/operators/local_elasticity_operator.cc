@@ -232,49 +232,113 @@ namespace PeriDEAL
                  1.;
       };
 
+      // Each node's dual cubes, found once per node (lattice look-ups),
+      // with their stiffness factors.
+      struct Cube
+      {
+        unsigned int                vertex; // the node's vertex in the cube
+        std::array<int, n_vertices> corner;
+        double                      factor;
+      };
+      std::vector<Cube> cubes;
+      const auto        collect_cubes = [&](const unsigned int i) {
+        cubes.clear();
+        for_each_cube(i, [&](const unsigned int a, const auto &corner) {
+          cubes.push_back({a, corner, cube_factor(corner)});
+        });
+      };
+      // A row's entries by the corner's offset from the node (3^dim
+      // places) and component: no search per entry.
+      constexpr unsigned int n_places = dim == 2 ? 9 : 27;
+      const auto             place =
+        [](const unsigned int a, const unsigned int b, const unsigned int r) {
+          unsigned int index = 0, scale = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              index += (1 + int((b >> d) & 1) - int((a >> d) & 1)) * scale;
+              scale *= 3;
+            }
+          return index * dim + r;
+        };
+
       DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
+      std::vector<types::global_dof_index> columns;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        for (unsigned int p = 0; p < dim; ++p)
-          {
-            const auto row = nodes[i].dofs[p];
-            dsp.add(row, row);
-            if (constraints.is_constrained(row))
-              continue;
-            for_each_cube(i, [&](const unsigned int, const auto &corner) {
-              for (const int j : corner)
-                for (unsigned int r = 0; r < dim; ++r)
-                  if (!constraints.is_constrained(nodes[j].dofs[r]))
-                    dsp.add(row, nodes[j].dofs[r]);
-            });
-          }
+        {
+          collect_cubes(i);
+          for (unsigned int p = 0; p < dim; ++p)
+            {
+              const auto row = nodes[i].dofs[p];
+              columns.assign(1, row);
+              if (!constraints.is_constrained(row))
+                for (const auto &cube : cubes)
+                  for (const int j : cube.corner)
+                    for (unsigned int r = 0; r < dim; ++r)
+                      if (!constraints.is_constrained(nodes[j].dofs[r]))
+                        columns.push_back(nodes[j].dofs[r]);
+              std::sort(columns.begin(), columns.end());
+              columns.erase(std::unique(columns.begin(), columns.end()),
+                            columns.end());
+              dsp.add_entries(row, columns.begin(), columns.end(), true);
+            }
+        }
       matrix.reinit(owned, owned, dsp, nodes.get_communicator());
 
       // A node in no complete dual cube (a one-cell-thin part) keeps a
       // diagonal of the scale of its neighbours': the stencil's diagonal
-      // in the bulk.
-      const double bulk_diagonal = n_vertices * k(0, 0);
+      // in the bulk. Each entry sums its cubes' contributions in cube
+      // order and enters the matrix once.
+      const double                       bulk_diagonal = n_vertices * k(0, 0);
+      std::array<double, n_places * dim> values;
+      std::array<types::global_dof_index, n_places * dim> cols;
+      std::array<bool, n_places * dim>                    used;
+      std::vector<types::global_dof_index>                row_cols;
+      std::vector<double>                                 row_values;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        for (unsigned int p = 0; p < dim; ++p)
-          {
-            const auto row      = nodes[i].dofs[p];
-            double     diagonal = 0;
-            for_each_cube(i, [&](const unsigned int a, const auto &corner) {
-              const double factor = cube_factor(corner);
-              diagonal += factor * k(a * dim + p, a * dim + p);
-              if (constraints.is_constrained(row))
-                return;
-              for (unsigned int b = 0; b < n_vertices; ++b)
-                for (unsigned int r = 0; r < dim; ++r)
+        {
+          collect_cubes(i);
+          for (unsigned int p = 0; p < dim; ++p)
+            {
+              const auto row      = nodes[i].dofs[p];
+              double     diagonal = 0;
+              used.fill(false);
+              for (const auto &cube : cubes)
+                {
+                  const unsigned int a = cube.vertex;
+                  diagonal += cube.factor * k(a * dim + p, a * dim + p);
+                  if (constraints.is_constrained(row))
+                    continue;
+                  for (unsigned int b = 0; b < n_vertices; ++b)
+                    for (unsigned int r = 0; r < dim; ++r)
+                      {
+                        const auto col = nodes[cube.corner[b]].dofs[r];
+                        if (col == row || constraints.is_constrained(col))
+                          continue;
+                        const unsigned int q = place(a, b, r);
+                        if (!used[q])
+                          {
+                            used[q]   = true;
+                            values[q] = 0;
+                            cols[q]   = col;
+                          }
+                        values[q] += cube.factor * k(a * dim + p, b * dim + r);
+                      }
+                }
+              row_cols.assign(1, row);
+              row_values.assign(1, diagonal > 0 ? diagonal : bulk_diagonal);
+              for (unsigned int q = 0; q < n_places * dim; ++q)
+                if (used[q])
                   {
-                    const auto col = nodes[corner[b]].dofs[r];
-                    if (col != row && !constraints.is_constrained(col))
-                      matrix.add(row,
-                                 col,
-                                 factor * k(a * dim + p, b * dim + r));
+                    row_cols.push_back(cols[q]);
+                    row_values.push_back(values[q]);
                   }
-            });
-            matrix.add(row, row, diagonal > 0 ? diagonal : bulk_diagonal);
-          }
+              matrix.add(row,
+                         row_cols.size(),
+                         row_cols.data(),
+                         row_values.data(),
+                         false);
+            }
+        }
       matrix.compress(VectorOperation::add);
     }
 
