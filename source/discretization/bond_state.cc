@@ -27,6 +27,7 @@ namespace PeriDEAL
       local.clear();
       changed.clear();
       is_changed.assign(n, false);
+      new_owned_bits = 0;
     }
 
 
@@ -40,6 +41,8 @@ namespace PeriDEAL
         return false;
       bits[b >> 6] |= mask;
       ++n_broken_of[i];
+      if (i < nodes->n_owned())
+        ++new_owned_bits;
       if (!is_changed[i])
         {
           is_changed[i] = true;
@@ -58,6 +61,27 @@ namespace PeriDEAL
         return;
       pending.emplace_back((*nodes)[i].dofs[0],
                            (*nodes)[neighbor(i, k)].dofs[0]);
+    }
+
+
+    template <int dim>
+    void
+    BondState<dim>::break_pair(const unsigned int i,
+                               const unsigned int ki,
+                               const unsigned int j,
+                               const int          kj,
+                               const bool         send)
+    {
+      AssertIndexRange(ki, first[i + 1] - first[i]);
+      const bool new_i = set(i, ki);
+      if (kj >= 0)
+        {
+          AssertIndexRange(static_cast<unsigned int>(kj),
+                           first[j + 1] - first[j]);
+          set(j, kj);
+        }
+      if (new_i && send)
+        pending.emplace_back((*nodes)[i].dofs[0], (*nodes)[j].dofs[0]);
     }
 
 
@@ -121,11 +145,13 @@ namespace PeriDEAL
     std::size_t
     BondState<dim>::synchronize()
     {
-      const MPI_Comm comm = nodes->get_communicator();
+      const MPI_Comm     comm    = nodes->get_communicator();
+      const unsigned int n_procs = Utilities::MPI::n_mpi_processes(comm);
       // Pairs without orientation, each once, from every process: a raw
       // MPI_Allgatherv (Utilities::MPI::all_gather() would serialise and
       // compress the pairs, which cost 15 % of a heavily breaking run even
-      // on one process).
+      // on one process). On one process only break_bond()'s pairs need
+      // their reverse here; break_pair() set both ends already.
       std::vector<std::uint64_t> mine;
       mine.reserve(2 * pending.size());
       for (const auto &p : pending)
@@ -134,7 +160,6 @@ namespace PeriDEAL
           mine.push_back(std::max(p.first, p.second));
         }
       pending.clear();
-      const unsigned int n_procs = Utilities::MPI::n_mpi_processes(comm);
       std::vector<std::uint64_t> gathered;
       if (n_procs == 1)
         gathered.swap(mine);
@@ -147,16 +172,19 @@ namespace PeriDEAL
           AssertThrowMPI(ierr);
           for (unsigned int p = 0; p < n_procs; ++p)
             displacements[p + 1] = displacements[p] + counts[p];
-          gathered.resize(displacements[n_procs]);
-          ierr = MPI_Allgatherv(mine.data(),
-                                n_mine,
-                                MPI_UINT64_T,
-                                gathered.data(),
-                                counts.data(),
-                                displacements.data(),
-                                MPI_UINT64_T,
-                                comm);
-          AssertThrowMPI(ierr);
+          if (displacements[n_procs] > 0)
+            {
+              gathered.resize(displacements[n_procs]);
+              ierr = MPI_Allgatherv(mine.data(),
+                                    n_mine,
+                                    MPI_UINT64_T,
+                                    gathered.data(),
+                                    counts.data(),
+                                    displacements.data(),
+                                    MPI_UINT64_T,
+                                    comm);
+              AssertThrowMPI(ierr);
+            }
         }
       std::vector<std::pair<std::uint64_t, std::uint64_t>> all;
       all.reserve(gathered.size() / 2);
@@ -164,31 +192,38 @@ namespace PeriDEAL
         all.emplace_back(gathered[q], gathered[q + 1]);
       std::sort(all.begin(), all.end());
       all.erase(std::unique(all.begin(), all.end()), all.end());
-      if (all.empty())
-        return 0;
 
-      // Global key -> local node, built once (the first time bonds break).
-      if (local.empty())
+      if (!all.empty())
         {
-          local.reserve(nodes->size());
-          for (unsigned int i = 0; i < nodes->size(); ++i)
-            local.emplace((*nodes)[i].dofs[0], i);
+          // Global key -> local node, built once (the first time pairs
+          // arrive).
+          if (local.empty())
+            {
+              local.reserve(nodes->size());
+              for (unsigned int i = 0; i < nodes->size(); ++i)
+                local.emplace((*nodes)[i].dofs[0], i);
+            }
+          auto break_here = [&](const std::uint64_t a, const std::uint64_t b) {
+            const auto ia = local.find(a), ib = local.find(b);
+            if (ia == local.end() || ib == local.end() ||
+                !lists->has_list(ia->second))
+              return;
+            const int k = bond_index(ia->second, ib->second);
+            if (k >= 0)
+              set(ia->second, k);
+          };
+          for (const auto &p : all)
+            {
+              break_here(p.first, p.second);
+              break_here(p.second, p.first);
+            }
         }
-      auto break_here = [&](const std::uint64_t a, const std::uint64_t b) {
-        const auto ia = local.find(a), ib = local.find(b);
-        if (ia == local.end() || ib == local.end() ||
-            !lists->has_list(ia->second))
-          return;
-        const int k = bond_index(ia->second, ib->second);
-        if (k >= 0)
-          set(ia->second, k);
-      };
-      for (const auto &p : all)
-        {
-          break_here(p.first, p.second);
-          break_here(p.second, p.first);
-        }
-      return all.size();
+      // Every newly broken pair has set one bit at each of its two owned
+      // ends (in break_bond(), break_pair() or just now), on whichever
+      // processes own them.
+      const std::uint64_t twice = new_owned_bits;
+      new_owned_bits            = 0;
+      return (n_procs == 1 ? twice : Utilities::MPI::sum(twice, comm)) / 2;
     }
 
 
@@ -223,6 +258,7 @@ namespace PeriDEAL
       pending.clear();
       changed.clear();
       is_changed.assign(is_changed.size(), false);
+      new_owned_bits = 0;
     }
 
 
@@ -232,6 +268,9 @@ namespace PeriDEAL
     {
       std::vector<unsigned int> result;
       result.swap(changed);
+      // In increasing index: bonds are broken in the order the threads
+      // found them, and nothing may depend on that.
+      std::sort(result.begin(), result.end());
       for (const unsigned int i : result)
         is_changed[i] = false;
       return result;

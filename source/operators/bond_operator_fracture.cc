@@ -101,7 +101,7 @@ namespace PeriDEAL
               else
                 lanes(std::false_type());
               if (n_failed > 0)
-                layout.add_failed_lanes(failed, s0, len, o, found);
+                layout.add_failed_lanes(failed, s0, len, k, found);
             }
           if (index == nullptr)
             {
@@ -166,7 +166,7 @@ namespace PeriDEAL
                   n_failed += intact ? 0. : 1.;
                 }
               if (n_failed > 0)
-                layout.add_failed_list_bonds(i, si, failed, found);
+                layout.add_failed_list_bonds(i, failed, found);
               theta *= list_theta_scale[i];
             }
           else
@@ -282,7 +282,7 @@ namespace PeriDEAL
               else
                 lanes(std::false_type(), std::false_type());
               if (n_failed > 0)
-                layout.add_failed_lanes(failed, s0, len, o, found);
+                layout.add_failed_lanes(failed, s0, len, k, found);
             }
           for (unsigned int d = 0; d < dim; ++d)
             for (unsigned int l = 0; l < len; ++l)
@@ -406,7 +406,7 @@ namespace PeriDEAL
                 f[dim - 1] = f2;
               node_energy = en;
               if (n_failed > 0)
-                layout.add_failed_list_bonds(i, si, failed, found);
+                layout.add_failed_list_bonds(i, failed, found);
             }
           else
             for_each_list_bond(i, [&](const ListBond &bond, const double *xi) {

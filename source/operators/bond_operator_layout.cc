@@ -185,8 +185,7 @@ namespace PeriDEAL
       const unsigned int n_owned = nodes->n_owned();
       layout.make_chunks(
         [&](const unsigned int i) {
-          return i < n_owned && !is_collocation_node(i) &&
-                 layout.on_stencil(i);
+          return i < n_owned && !is_collocation_node(i) && layout.on_stencil(i);
         },
         force_work().chunks);
     }
@@ -225,7 +224,7 @@ namespace PeriDEAL
             force_work().full_chunks);
           if (bond_state != nullptr)
             for (unsigned int i = 0; i < n; ++i)
-              if (full(i) && bond_state->any_broken(i))
+              if (layout.masks_bonds(i) && bond_state->any_broken(i))
                 layout.set_broken_bits(i);
         }
 

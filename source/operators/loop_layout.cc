@@ -124,6 +124,18 @@ namespace PeriDEAL
         for (const auto &o : lists->stencil())
           stencil_offset.push_back(lattice.slot_offset(o.offset));
 
+      // Owned nodes that are ghosts on another process, and every ghost.
+      {
+        std::vector<char> imported(partitioner->locally_owned_size(), 0);
+        for (const auto &range : partitioner->import_indices())
+          std::fill(imported.begin() + range.first,
+                    imported.begin() + range.second,
+                    1);
+        on_partition_boundary.assign(n, 1);
+        for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+          on_partition_boundary[i] = imported[vector_index[i]];
+      }
+
       pass.assign(n_passes, Pass());
       list_first.clear();
       list_end.clear();
@@ -133,6 +145,12 @@ namespace PeriDEAL
       bond_stencil_first.clear();
       bond_in_stencil_order.clear();
       run_eligible.assign(n, 0);
+      eligible_stencil_index.clear();
+      eligible_first.clear();
+      stencil_opposite.clear();
+      member_row.clear();
+      member_words.clear();
+      member_row_words = 0;
       block_mask_first.clear();
       mask_words.clear();
       n_owned_stencil = 0;
@@ -181,6 +199,10 @@ namespace PeriDEAL
           }
 
       run_eligible.assign(n, 0);
+      stencil_opposite.clear();
+      member_row.clear();
+      member_words.clear();
+      member_row_words = 0;
       if (!use_lattice)
         return;
       // For every stencil offset o, the index of o - e_0 (-1 if outside).
@@ -188,6 +210,33 @@ namespace PeriDEAL
       std::map<std::array<int, dim>, int> index_of;
       for (unsigned int k = 0; k < offsets.size(); ++k)
         index_of[offsets[k].offset] = k;
+      // The opposite of each offset (the stencil is symmetric).
+      stencil_opposite.resize(offsets.size());
+      for (unsigned int k = 0; k < offsets.size(); ++k)
+        {
+          auto opposite = offsets[k].offset;
+          for (unsigned int d = 0; d < dim; ++d)
+            opposite[d] = -opposite[d];
+          const auto it = index_of.find(opposite);
+          AssertThrow(it != index_of.end(),
+                      ExcMessage("The shared stencil is not symmetric."));
+          stencil_opposite[k] = static_cast<std::uint16_t>(it->second);
+        }
+      // The membership bits of the stored lists (bond_number()).
+      member_row_words = (offsets.size() + 63) / 64;
+      member_row.assign(n, ~std::uint32_t(0));
+      std::uint32_t n_rows = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        if (bond_stencil_first[i + 1] > bond_stencil_first[i])
+          member_row[i] = n_rows++;
+      member_words.assign(std::size_t(n_rows) * member_row_words, 0);
+      for (unsigned int i = 0; i < n; ++i)
+        for (std::size_t b = bond_stencil_first[i];
+             b < bond_stencil_first[i + 1];
+             ++b)
+          member_words[std::size_t(member_row[i]) * member_row_words +
+                       bond_stencil_index[b] / 64] |=
+            std::uint64_t(1) << (bond_stencil_index[b] % 64);
       std::vector<std::pair<unsigned int, unsigned int>> pairs;
       for (unsigned int k = 0; k < offsets.size(); ++k)
         {
@@ -217,6 +266,22 @@ namespace PeriDEAL
               invariant = invariant && present[k] == present[k_minus];
             run_eligible[i] = invariant ? 1 : 0;
           }
+      // The runs' offsets: each eligible node's initial bonds in
+      // increasing stencil order (its membership bits).
+      eligible_first.assign(n, 0);
+      eligible_stencil_index.clear();
+      for (unsigned int i = 0; i < n; ++i)
+        if (run_eligible[i])
+          {
+            eligible_first[i] = eligible_stencil_index.size();
+            const std::uint64_t *row =
+              member_words.data() +
+              std::size_t(member_row[i]) * member_row_words;
+            for (unsigned int w = 0; w < member_row_words; ++w)
+              for (std::uint64_t v = row[w]; v != 0; v &= v - 1)
+                eligible_stencil_index.push_back(
+                  static_cast<std::uint16_t>(64 * w + __builtin_ctzll(v)));
+          }
     }
 
 
@@ -231,7 +296,33 @@ namespace PeriDEAL
       // lattice look-up.
       const unsigned int n_all = lists->n_bonds(i);
       const bool         full  = lists->has_full_stencil(i);
-      const std::size_t  first = full ? 0 : bond_stencil_first[i];
+      if (full && bond_state != nullptr)
+        {
+          // The intact bits a word at a time.
+          bond_state->for_each_intact(i, [&](const unsigned int k) {
+            list_stencil_index[pos++] = static_cast<std::uint16_t>(k);
+          });
+          return pos;
+        }
+      const std::size_t first = full ? 0 : bond_stencil_first[i];
+      if (!full && bond_state != nullptr && n_all > 0 && member_row_words > 0 &&
+          member_row_words <= 16)
+        {
+          // The broken bonds as stencil-index bits, then the membership
+          // bits without them, a word at a time (increasing stencil order).
+          std::uint64_t        broken[16] = {};
+          const std::uint16_t *index      = bond_stencil_index.data() + first;
+          bond_state->for_each_broken(i, [&](const unsigned int k) {
+            broken[index[k] / 64] |= std::uint64_t(1) << (index[k] % 64);
+          });
+          const std::uint64_t *row =
+            member_words.data() + std::size_t(member_row[i]) * member_row_words;
+          for (unsigned int w = 0; w < member_row_words; ++w)
+            for (std::uint64_t v = row[w] & ~broken[w]; v != 0; v &= v - 1)
+              list_stencil_index[pos++] =
+                static_cast<std::uint16_t>(64 * w + __builtin_ctzll(v));
+          return pos;
+        }
       for (unsigned int q = 0; q < n_all; ++q)
         {
           const unsigned int k = full ? q : bond_in_stencil_order[first + q];
@@ -266,10 +357,20 @@ namespace PeriDEAL
           mask_words.resize(mask_words.size() + n_k, 0);
         }
       std::uint64_t *words = mask_words.data() + block_mask_first[b];
-      // A node of the full stencil numbers its bonds in stencil order.
-      for (std::size_t k = 0; k < n_k; ++k)
-        if (bond_state->is_broken(i, k))
+      // A node of the full stencil numbers its bonds in stencil order; a
+      // stored list's bond k has the stencil index found once.
+      if (lists->has_full_stencil(i))
+        bond_state->for_each_broken(i, [&](const unsigned int k) {
           words[k] |= std::uint64_t(1) << lane;
+        });
+      else
+        {
+          const std::uint16_t *index =
+            bond_stencil_index.data() + bond_stencil_first[i];
+          bond_state->for_each_broken(i, [&](const unsigned int k) {
+            words[index[k]] |= std::uint64_t(1) << lane;
+          });
+        }
     }
 
 
@@ -283,33 +384,33 @@ namespace PeriDEAL
       for (const unsigned int i : work.list_nodes)
         if (use_lattice && lists->has_full_stencil(i))
           continue; // in the full chunks, its broken bonds masked
-        else if (use_lattice && run_eligible[i] &&
-                 list_end[i] > list_first[i] &&
-                 !(bond_state != nullptr && bond_state->any_broken(i)))
-          candidates.emplace_back(slot[i], i);
+        else if (use_lattice && run_eligible[i])
+          candidates.emplace_back(slot[i], i); // broken bonds masked
         else
           work.gather_nodes.push_back(i);
       std::sort(candidates.begin(), candidates.end());
-      const std::uint16_t *index = list_stencil_index.data();
       for (std::size_t a = 0; a < candidates.size();)
         {
-          // Lists are written in increasing stencil order, so nodes
-          // with the same set of offsets have equal segments.
-          const unsigned int i     = candidates[a].second;
-          const std::size_t  first = list_first[i];
-          const std::size_t  size  = list_end[i] - first;
-          std::size_t        b     = a + 1;
+          // Nodes with the same set of initial offsets have equal
+          // membership rows.
+          const unsigned int   i = candidates[a].second;
+          const std::uint64_t *row =
+            member_words.data() + std::size_t(member_row[i]) * member_row_words;
+          std::size_t b = a + 1;
           while (b < candidates.size() && b - a < chunk_size &&
                  candidates[b].first == candidates[a].first + (b - a))
             {
               const unsigned int j = candidates[b].second;
-              if (list_end[j] - list_first[j] != size ||
-                  !std::equal(index + first,
-                              index + first + size,
-                              index + list_first[j]))
+              if (!std::equal(row,
+                              row + member_row_words,
+                              member_words.data() +
+                                std::size_t(member_row[j]) * member_row_words))
                 break;
               ++b;
             }
+          const std::size_t first = eligible_first[i];
+          const std::size_t size =
+            bond_stencil_first[i + 1] - bond_stencil_first[i];
           work.runs.push_back({candidates[a].first,
                                static_cast<unsigned int>(b - a),
                                first,
@@ -360,8 +461,13 @@ namespace PeriDEAL
           sizeof(std::size_t) +
         is_listed.capacity() + run_eligible.capacity() +
         (list_stencil_index.capacity() + bond_stencil_index.capacity() +
-         bond_in_stencil_order.capacity()) *
+         bond_in_stencil_order.capacity() + stencil_opposite.capacity()) *
           sizeof(std::uint16_t) +
+        member_row.capacity() * sizeof(std::uint32_t) +
+        eligible_stencil_index.capacity() * sizeof(std::uint16_t) +
+        eligible_first.capacity() * sizeof(std::size_t) +
+        member_words.capacity() * sizeof(std::uint64_t) +
+        on_partition_boundary.capacity() +
         block_mask_first.capacity() * sizeof(std::int64_t) +
         mask_words.capacity() * sizeof(std::uint64_t);
       for (const Pass &work : pass)

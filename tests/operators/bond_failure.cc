@@ -10,7 +10,8 @@
 //   are in the sum, and the test asserts that runs of two or more nodes
 //   were used before the commit and runs after it; after the
 //   commit, nodes of the full stencil with broken bonds stay in the
-//   stencil chunks with those bonds masked, also asserted);
+//   stencil chunks, and surface nodes with broken bonds in their runs,
+//   with those bonds masked, also asserted);
 // - the bonds found over it are exactly the pairs the brute force finds:
 //   after commit_broken_bonds() the broken bonds of the bond state are
 //   those pairs, pair by pair; and they stay out: after the displacement
@@ -128,6 +129,8 @@ check(const std::string &model_name,
   // of one node would pass the run path without vectorising anything).
   const unsigned int longest_run =
     Utilities::MPI::max(op.max_run_length(), comm);
+  const unsigned int n_run_nodes_before =
+    Utilities::MPI::sum(op.n_run_nodes(), comm);
   // The forces before the commit come with the energy of the same pass.
   const double      energy_before = op.apply_with_energy(u, force);
   const std::size_t n_committed   = op.commit_broken_bonds(state);
@@ -357,9 +360,17 @@ check(const std::string &model_name,
   const unsigned int n_run_nodes = Utilities::MPI::sum(op.n_run_nodes(), comm);
   // Nodes of the full stencil that lost bonds: the passes keep them in the
   // stencil chunks with their broken bonds masked.
-  unsigned int n_masked = 0;
+  unsigned int n_masked = 0, n_surface_broken = 0;
   for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-    n_masked += lists.has_full_stencil(i) && state.any_broken(i);
+    {
+      n_masked += lists.has_full_stencil(i) && state.any_broken(i);
+      n_surface_broken += !lists.has_full_stencil(i) && state.any_broken(i);
+    }
+  // Surface nodes that lost bonds stay in their runs, those bonds masked:
+  // the runs hold as many nodes as before the commit.
+  const bool runs_kept =
+    n_run_nodes == n_run_nodes_before &&
+    Utilities::MPI::sum(n_surface_broken, comm) > 0;
   n_masked = Utilities::MPI::sum(n_masked, comm);
 
   // F = -dE/du by central differences at a few DoFs (the bonds over the
@@ -423,6 +434,9 @@ check(const std::string &model_name,
             << (n_committed_relaxed == 0 ? "yes" : "NO")
             << "\n  surface nodes evaluated in runs (after the commit) > 0: "
             << (n_run_nodes > 0 ? "yes" : "NO")
+            << "\n  surface nodes that lost bonds stay in their runs "
+               "(masked): "
+            << (runs_kept ? "yes" : "NO")
             << "\n  longest surface run (before the commit) >= 2 nodes: "
             << (longest_run >= 2 ? "yes" : "NO")
             << "\n  stencil nodes with masked broken bonds (after the commit) "

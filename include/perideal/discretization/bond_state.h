@@ -74,10 +74,60 @@ namespace PeriDEAL
       break_bond(const unsigned int i, const unsigned int k);
 
       /**
+       * Break bond @p ki of node @p i and, with @p kj >= 0, the reverse
+       * bond @p kj of its neighbour @p j here, for a caller that knows both
+       * bonds' numbers (BondOperator on the lattice: no search per bond).
+       * Only with @p send does the pair go to the other processes at
+       * synchronize(): set it when another process may hold a list for
+       * either end (an end that is a ghost here, or an owned node that is a
+       * ghost elsewhere).
+       */
+      void
+      break_pair(const unsigned int i,
+                 const unsigned int ki,
+                 const unsigned int j,
+                 const int          kj,
+                 const bool         send);
+
+      /**
+       * Calls @p f(k) for every broken bond k of node @p i, in increasing
+       * k, reading the bits a word at a time.
+       */
+      template <typename Function>
+      void
+      for_each_broken(const unsigned int i, const Function &f) const
+      {
+        for_each_word(i, [&](const unsigned int k0, std::uint64_t w) {
+          for (; w != 0; w &= w - 1)
+            f(k0 + static_cast<unsigned int>(__builtin_ctzll(w)));
+        });
+      }
+
+      /**
+       * Calls @p f(k) for every intact bond k of node @p i, in increasing
+       * k, reading the bits a word at a time.
+       */
+      template <typename Function>
+      void
+      for_each_intact(const unsigned int i, const Function &f) const
+      {
+        const std::size_t n = first[i + 1] - first[i];
+        for_each_word(i, [&](const unsigned int k0, const std::uint64_t w) {
+          const std::size_t   left = n - k0;
+          const std::uint64_t all =
+            left >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << left) - 1;
+          for (std::uint64_t v = ~w & all; v != 0; v &= v - 1)
+            f(k0 + static_cast<unsigned int>(__builtin_ctzll(v)));
+        });
+      }
+
+      /**
        * Make the bond state consistent (collective): every bond broken on
        * any process since the last call is broken in both directions on
        * every process that has a list for either end. Returns the number of
-       * bonds (pairs) that were newly broken on all processes together.
+       * bonds (pairs) that were newly broken on all processes together
+       * (counted at their owned ends: half the bits newly set there, by
+       * break_bond(), break_pair() or here).
        */
       std::size_t
       synchronize();
@@ -133,9 +183,32 @@ namespace PeriDEAL
       std::vector<bool>                                    is_changed;
       std::unordered_map<std::uint64_t, unsigned int>      local;
 
+      /// Bits newly set at owned nodes since the last synchronize().
+      std::size_t new_owned_bits = 0;
+
       /// Set the bit of bond k of node i; whether it was intact.
       bool
       set(const unsigned int i, const unsigned int k);
+
+      /// Calls @p f(k0, word) with the bits of bonds k0, k0 + 1, ... of
+      /// node @p i (bit l: bond k0 + l; bits past the last bond are 0).
+      template <typename Function>
+      void
+      for_each_word(const unsigned int i, const Function &f) const
+      {
+        const std::size_t b0 = first[i], b1 = first[i + 1];
+        for (std::size_t b = b0; b < b1; b += 64)
+          {
+            const std::size_t  w     = b >> 6;
+            const unsigned int shift = b & 63;
+            std::uint64_t      word  = bits[w] >> shift;
+            if (shift != 0 && w + 1 < bits.size())
+              word |= bits[w + 1] << (64 - shift);
+            if (b1 - b < 64)
+              word &= (std::uint64_t(1) << (b1 - b)) - 1;
+            f(static_cast<unsigned int>(b - b0), word);
+          }
+      }
     };
   } // namespace Discretization
 } // namespace PeriDEAL

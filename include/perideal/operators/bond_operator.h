@@ -450,7 +450,11 @@ namespace PeriDEAL
       static constexpr unsigned int chunk_size = LoopLayout<dim>::chunk_size;
 
     private:
-      /// A bond that reached its critical stretch: local node indices.
+      /**
+       * A bond that reached its critical stretch: its node (local index)
+       * and, on the lattice, its stencil index, otherwise the neighbour's
+       * local index.
+       */
       using ExceededBond = std::pair<unsigned int, unsigned int>;
       using Chunk        = typename LoopLayout<dim>::Chunk;
       using Run          = typename LoopLayout<dim>::Run;

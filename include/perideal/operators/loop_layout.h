@@ -72,14 +72,15 @@ namespace PeriDEAL
       };
 
       /**
-       * A run of consecutive slots of intact nodes off the shared stencil
-       * (near the surface) whose bonds are the same set of stencil
-       * offsets, the head's list_stencil_index[index_first, index_first +
-       * n_index): evaluated like a Chunk, vectorised over the slots, but
-       * over those offsets only, instead of one gather loop per node.
-       * Lists are written in increasing stencil order, so equal sets are
-       * equal segments, and a node of a run sums its bonds in the same
-       * order whichever node heads the run (the partition decides that).
+       * A run of consecutive slots of nodes off the shared stencil (near
+       * the surface) whose bonds were initially the same set of stencil
+       * offsets, eligible_stencil_index[index_first, index_first +
+       * n_index) in increasing order: evaluated like a Chunk, vectorised
+       * over the slots, over those offsets only, with the bonds broken
+       * since masked as in the full chunks, instead of one gather loop per
+       * node. A node of a run sums its bonds in the same order whichever
+       * node heads the run (the partition decides that), and stays in its
+       * run as its bonds break.
        */
       struct Run
       {
@@ -200,39 +201,63 @@ namespace PeriDEAL
       }
 
       /**
-       * Append (node of slot s0 + l, node of slot s0 + l + o) to @p found
-       * for each lane l < @p length with @p failed[l] != 0: the bonds a lane
-       * loop over the offset with slot offset @p o found failed.
+       * Append (node of slot s0 + l, @p k) to @p found for each lane l <
+       * @p length with @p failed[l] != 0: the bonds a lane loop over the
+       * stencil offset @p k found failed, each named by its node and
+       * stencil index (bond_number() and stencil_opposite give both ends'
+       * bond numbers without a search).
        */
       template <typename Pair>
       void
-      add_failed_lanes(const double        *failed,
-                       const std::size_t    s0,
-                       const unsigned int   length,
-                       const std::ptrdiff_t o,
-                       std::vector<Pair>   &found) const
+      add_failed_lanes(const double      *failed,
+                       const std::size_t  s0,
+                       const unsigned int length,
+                       const std::size_t  k,
+                       std::vector<Pair> &found) const
       {
         for (unsigned int l = 0; l < length; ++l)
           if (failed[l] != 0)
-            found.emplace_back(node_of_slot(s0 + l), node_of_slot(s0 + l + o));
+            found.emplace_back(node_of_slot(s0 + l), k);
       }
 
       /**
-       * On the lattice: append (i, neighbour) to @p found for each list bond
-       * b of node @p i (slot @p si) with @p failed[b - list_first[i]] != 0.
+       * On the lattice: append (i, stencil index) to @p found for each list
+       * bond b of node @p i with @p failed[b - list_first[i]] != 0.
        */
       template <typename Pair>
       void
       add_failed_list_bonds(const unsigned int i,
-                            const std::size_t  si,
                             const double      *failed,
                             std::vector<Pair> &found) const
       {
         for (std::size_t b = list_first[i]; b < list_end[i]; ++b)
           if (failed[b - list_first[i]] != 0)
-            found.emplace_back(i,
-                               node_of_slot(
-                                 si + stencil_offset[list_stencil_index[b]]));
+            found.emplace_back(i, list_stencil_index[b]);
+      }
+
+      /**
+       * On the lattice: the number of the bond of node @p i (which has a
+       * list) along stencil offset @p k in i's BondState numbering, or -1
+       * when i has no bond there. A full stencil numbers its bonds in
+       * stencil order; a stored list by the rank of k among the list's
+       * stencil indices (a popcount over its membership bits), mapped to
+       * the list's order: no search.
+       */
+      int
+      bond_number(const unsigned int i, const unsigned int k) const
+      {
+        if (lists->has_full_stencil(i))
+          return static_cast<int>(k);
+        const std::uint64_t *row =
+          member_words.data() + std::size_t(member_row[i]) * member_row_words;
+        const unsigned int  w   = k / 64;
+        const std::uint64_t bit = std::uint64_t(1) << (k % 64);
+        if ((row[w] & bit) == 0)
+          return -1;
+        unsigned int rank = __builtin_popcountll(row[w] & (bit - 1));
+        for (unsigned int v = 0; v < w; ++v)
+          rank += __builtin_popcountll(row[v]);
+        return bond_in_stencil_order[bond_stencil_first[i] + rank];
       }
 
       /// The shared stencil's number of offsets (0 off the lattice).
@@ -273,9 +298,20 @@ namespace PeriDEAL
       void
       clear_masks();
 
-      /// Set the mask bits of the broken bonds of node @p i (full stencil).
+      /// Set the mask bits of the broken bonds of node @p i (full stencil,
+      /// or a list node eligible for runs).
       void
       set_broken_bits(const unsigned int i);
+
+      /// Whether node @p i's broken bonds are masked (set_broken_bits())
+      /// instead of dropped from its list: the nodes of full chunks and
+      /// runs.
+      bool
+      masks_bonds(const unsigned int i) const
+      {
+        return use_lattice &&
+               (lists->has_full_stencil(i) || run_eligible[i] != 0);
+      }
 
       /// Split @p pass's list nodes into runs and gather nodes (after
       /// every change of the lists).
@@ -292,10 +328,18 @@ namespace PeriDEAL
       Block
       masked_block(const Chunk &chunk) const
       {
-        Block block{chunk.first_slot, chunk.length, nullptr, n_offsets()};
-        const std::size_t b0 = chunk.first_slot / 64;
-        const std::size_t b1 = (chunk.first_slot + chunk.length - 1) / 64;
-        block.shift          = chunk.first_slot % 64;
+        return with_masks(
+          Block{chunk.first_slot, chunk.length, nullptr, n_offsets()});
+      }
+
+      /// @p block with the mask words of the blocks of 64 slots it spans
+      /// (masks are indexed by stencil index).
+      Block
+      with_masks(Block block) const
+      {
+        const std::size_t b0 = block.first_slot / 64;
+        const std::size_t b1 = (block.first_slot + block.length - 1) / 64;
+        block.shift          = block.first_slot % 64;
         if (block_mask_first[b0] >= 0)
           block.mask_low = mask_words.data() + block_mask_first[b0];
         // A chunk of at most 64 slots spans a second block only if it does
@@ -320,10 +364,11 @@ namespace PeriDEAL
         });
         sweep(pass.runs.size(), [&](const std::size_t c) {
           const Run &run = pass.runs[c];
-          return Block{run.first_slot,
-                       run.length,
-                       list_stencil_index.data() + run.index_first,
-                       run.n_index};
+          return with_masks(
+            Block{run.first_slot,
+                  run.length,
+                  eligible_stencil_index.data() + run.index_first,
+                  run.n_index});
         });
       }
 
@@ -420,11 +465,28 @@ namespace PeriDEAL
       std::vector<std::uint16_t> bond_stencil_index;
       std::vector<std::size_t>   bond_stencil_first;
       std::vector<std::uint16_t> bond_in_stencil_order;
+      // On the lattice: the stencil index of the opposite offset -o of
+      // each offset o.
+      std::vector<std::uint16_t> stencil_opposite;
+      // Per node with a stored list on the lattice: which stencil offsets
+      // its bonds take, member_row_words bits-words from row member_row[i]
+      // of member_words (bond_number()).
+      std::vector<std::uint32_t> member_row;
+      std::vector<std::uint64_t> member_words;
+      unsigned int               member_row_words = 0;
+      // Node i is a ghost here, or an owned node that is a ghost on
+      // another process: another process may hold a list for it, so a bond
+      // broken at it is sent at BondState::synchronize().
+      std::vector<char> on_partition_boundary;
       // run_eligible[i]: node i's neighbourhood looks the same one slot
       // further along the slot axis wherever both are inside its horizon
       // (a node-local test, so every partition treats a node alike); it
-      // joins a run while it has no broken bond.
+      // joins a run, and stays in it as bonds break (masked).
       std::vector<char> run_eligible;
+      // The initial bonds' stencil indices of each eligible node, in
+      // increasing order, from eligible_first[i] (the runs' offsets).
+      std::vector<std::uint16_t> eligible_stencil_index;
+      std::vector<std::size_t>   eligible_first;
       // The bonds that broke at nodes of the full stencil: one bit per
       // (stencil offset, slot), stored per block of 64 slots for the blocks
       // that hold a node with a broken bond (block_mask_first[b]: its first
