@@ -28,6 +28,11 @@ namespace PeriDEAL
       //   + |sum_j a_ij n_c| A_i.
       const unsigned int  n = nodes->size();
       std::vector<double> A(n, 0.);
+      // (for_each_bond_constants() reads a box offset per stencil offset.)
+      std::vector<std::ptrdiff_t> no_delta(layout.use_lattice ?
+                                             stencil.g.size() :
+                                             0,
+                                           0);
       if (state_based)
         for (const unsigned int list : {0u, 1u})
           {
@@ -36,7 +41,7 @@ namespace PeriDEAL
               double sum = 0;
               for_each_bond_constants(i,
                                       0,
-                                      {},
+                                      no_delta,
                                       [&](const std::size_t,
                                           const std::ptrdiff_t,
                                           const double *nv,
@@ -74,10 +79,6 @@ namespace PeriDEAL
                 },
                 256);
           }
-      std::vector<std::ptrdiff_t> no_delta(layout.use_lattice ?
-                                             stencil.g.size() :
-                                             0,
-                                           0);
       // Threaded over the owned nodes: each writes the largest of its own
       // rows (a maximum: the same whatever the split).
       std::vector<double> node_largest(nodes->n_owned(), 0.);
