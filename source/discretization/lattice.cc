@@ -163,6 +163,21 @@ namespace PeriDEAL
 
 
     template <int dim>
+    bool
+    Lattice<dim>::box_holds(const std::array<std::int64_t, dim> &x,
+                            const std::int64_t                   margin) const
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const std::int64_t k = x[d] - box_lower[d];
+          if (k < margin || k + margin >= box_size[d])
+            return false;
+        }
+      return true;
+    }
+
+
+    template <int dim>
     std::ptrdiff_t
     Lattice<dim>::slot_offset(const std::array<int, dim> &offset) const
     {

@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
 
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/quadrature/uniform_grid_weights.h>
@@ -99,15 +100,8 @@ namespace PeriDEAL
         for (unsigned int j = 0; j < n; ++j)
           buckets[key_of(nodes[j].location)].push_back(j);
 
+      // (The bucket search: off the lattice.)
       auto weight_of = [&](const unsigned int i, const unsigned int j) {
-        if (uniform)
-          {
-            std::array<int, dim> offset;
-            for (unsigned int d = 0; d < dim; ++d)
-              offset[d] = static_cast<int>(grid.coordinates(j)[d] -
-                                           grid.coordinates(i)[d]);
-            return table->beta(offset);
-          }
         // Nodes moved off their cells' centres: the exact fraction of j's
         // cell in i's ball differs from that of i's cell in j's ball, so the
         // bond takes their mean (the same at both ends: the pair forces
@@ -119,136 +113,199 @@ namespace PeriDEAL
         return algorithm.weight(nodes[i].location, horizon, nodes[j].cell);
       };
 
-      listed.assign(n, false);
-      full.assign(n, false);
-      stored.assign(n, false);
+      listed.assign(n, 0);
+      full.assign(n, 0);
+      stored.assign(n, 0);
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        listed[i] = true;
+        listed[i] = 1;
       std::vector<unsigned int> n_bonds_of(n, 0);
 
-      std::vector<std::vector<Bond>> lists(n);
-      auto                           build = [&](const unsigned int i) {
-        const Point<dim> &x = nodes[i].location;
-        if (uniform)
+      // On the lattice: the stencil as slot differences, for the nodes
+      // whose whole stencil lies inside the local box.
+      std::vector<std::ptrdiff_t> stencil_slots;
+      for (const auto &o : full_stencil)
+        stencil_slots.push_back(grid.slot_offset(o.offset));
+      auto count_lattice_neighbours = [&](const unsigned int i) {
+        const auto  &xi     = grid.coordinates(i);
+        unsigned int n_here = 0;
+        if (grid.box_holds(xi, stencil_bound))
           {
-            // On the lattice the neighbours are the stencil's offsets that
-            // hold a node: no search, no distance test.
-            const auto  &xi     = grid.coordinates(i);
-            unsigned int n_here = 0;
-            for (const auto &o : full_stencil)
-              {
-                std::array<std::int64_t, dim> y = xi;
-                for (unsigned int d = 0; d < dim; ++d)
-                  y[d] += o.offset[d];
-                const int j = grid.node_at(y);
-                if (j < 0)
-                  continue;
-                ++n_here;
-                lists[i].push_back(
-                  {static_cast<unsigned int>(j), o.beta * nodes[j].volume()});
-              }
-            full[i] = (n_here == full_stencil.size());
-            stored[i] = store_full_lists || !full[i];
-            n_bonds_of[i] = n_here;
-            if (!stored[i])
-              {
-                std::vector<Bond>().swap(lists[i]);
-                return;
-              }
-            std::sort(lists[i].begin(),
-                      lists[i].end(),
-                      [&](const Bond &p, const Bond &q) {
-                        return nodes[p.neighbor].dofs[0] <
-                               nodes[q.neighbor].dofs[0];
-                      });
-            return;
+            const std::size_t s = grid.slot(i);
+            for (const std::ptrdiff_t o : stencil_slots)
+              n_here += (grid.node_at_slot(s + o) >= 0);
+            return n_here;
           }
-        const std::array<int, dim> key = key_of(x);
-        std::array<int, dim>       k;
-        const unsigned int         n_adjacent = std::pow(3, dim);
-        for (unsigned int a = 0; a < n_adjacent; ++a)
+        for (const auto &o : full_stencil)
           {
-            unsigned int code = a;
-            for (unsigned int d = 0; d < dim; ++d, code /= 3)
-              k[d] = key[d] + static_cast<int>(code % 3) - 1;
-            const auto bucket_nodes = buckets.find(k);
-            if (bucket_nodes == buckets.end())
-              continue;
-            for (const unsigned int j : bucket_nodes->second)
-              if (j != i &&
-                  x.distance_square(nodes[j].location) < reach * reach)
-                {
-                  const double beta = weight_of(i, j);
-                  if (beta > 0)
-                    lists[i].push_back({j, beta * nodes[j].volume()});
-                }
+            std::array<std::int64_t, dim> y = xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              y[d] += o.offset[d];
+            n_here += (grid.node_at(y) >= 0);
           }
-        // Deterministic order, independent of bucket layout and partition:
-        // by the neighbour's first DoF index.
-        std::sort(lists[i].begin(),
-                  lists[i].end(),
-                  [&](const Bond &p, const Bond &q) {
-                    return nodes[p.neighbor].dofs[0] <
-                           nodes[q.neighbor].dofs[0];
-                  });
-        n_bonds_of[i] = lists[i].size();
-        full[i] = uniform && lists[i].size() == full_stencil.size();
-        stored[i] = store_full_lists || !full[i];
-      };
-      // A node without a stored list keeps nothing but its flags.
-      auto release = [&](const unsigned int i) {
-        if (!stored[i])
-          std::vector<Bond>().swap(lists[i]);
+        return n_here;
       };
 
-      // Lists that are not kept go right after they are built: the bulk of
-      // a uniform grid never holds more than one list at a time.
-      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+      // A list in the order of the neighbours' first DoF (deterministic,
+      // independent of the search and of the partition), with the keys
+      // read once per bond rather than once per comparison.
+      auto sort_by_dof =
+        [&](Bond                                                  *first,
+            Bond                                                  *last,
+            std::vector<std::pair<types::global_dof_index, Bond>> &keyed) {
+          keyed.clear();
+          for (const Bond *bond = first; bond != last; ++bond)
+            keyed.emplace_back(nodes[bond->neighbor].dofs[0], *bond);
+          std::sort(keyed.begin(),
+                    keyed.end(),
+                    [](const auto &p, const auto &q) {
+                      return p.first < q.first;
+                    });
+          for (const auto &entry : keyed)
+            *first++ = entry.second;
+        };
+
+      if (uniform)
         {
-          build(i);
-          release(i);
+          // On the lattice the neighbours are the stencil's offsets that
+          // hold a node: no search, no distance test. Three threaded
+          // passes, each node writing only its own entries: which
+          // off-process nodes get a list, then every listed node's count
+          // (a node with its whole stencil keeps only that), then the
+          // stored lists, written straight into their place.
+          const unsigned int n_owned = nodes.n_owned();
+          if (with_ghost_lists)
+            {
+              // The off-process nodes in the stencil of an owned node. The
+              // stencil is symmetric (a ball's partial volumes: offset o
+              // and -o weigh the same), so they are the ghosts with an
+              // owned node in their own stencil.
+              for (const auto &o : full_stencil)
+                {
+                  std::size_t q = 0;
+                  for (int d = dim - 1; d >= 0; --d)
+                    q = q * (2 * stencil_bound + 1) +
+                        (-o.offset[d] + stencil_bound);
+                  AssertThrow(offset_to_stencil[q] >= 0, ExcInternalError());
+                }
+              parallel::apply_to_subranges(
+                n_owned,
+                n,
+                [&](const unsigned int begin, const unsigned int end) {
+                  for (unsigned int j = begin; j < end; ++j)
+                    for (const auto &o : full_stencil)
+                      {
+                        std::array<std::int64_t, dim> y = grid.coordinates(j);
+                        for (unsigned int d = 0; d < dim; ++d)
+                          y[d] += o.offset[d];
+                        const int i = grid.node_at(y);
+                        if (i >= 0 && static_cast<unsigned int>(i) < n_owned)
+                          {
+                            listed[j] = 1;
+                            break;
+                          }
+                      }
+                },
+                256);
+            }
+          parallel::apply_to_subranges(
+            0u,
+            n,
+            [&](const unsigned int begin, const unsigned int end) {
+              for (unsigned int i = begin; i < end; ++i)
+                if (listed[i])
+                  {
+                    n_bonds_of[i] = count_lattice_neighbours(i);
+                    full[i]       = (n_bonds_of[i] == full_stencil.size());
+                    stored[i]     = store_full_lists || !full[i];
+                  }
+            },
+            1024);
+          offsets.assign(n + 1, 0);
+          for (unsigned int i = 0; i < n; ++i)
+            offsets[i + 1] =
+              offsets[i] + (listed[i] && stored[i] ? n_bonds_of[i] : 0);
+          all_bonds.assign(offsets[n], Bond());
+          parallel::apply_to_subranges(
+            0u,
+            n,
+            [&](const unsigned int begin, const unsigned int end) {
+              std::vector<std::pair<types::global_dof_index, Bond>> keyed;
+              for (unsigned int i = begin; i < end; ++i)
+                if (offsets[i + 1] > offsets[i])
+                  {
+                    Bond *const first = all_bonds.data() + offsets[i];
+                    Bond       *bond  = first;
+                    for (const auto &o : full_stencil)
+                      {
+                        std::array<std::int64_t, dim> y = grid.coordinates(i);
+                        for (unsigned int d = 0; d < dim; ++d)
+                          y[d] += o.offset[d];
+                        const int j = grid.node_at(y);
+                        if (j >= 0)
+                          *bond++ = {static_cast<unsigned int>(j),
+                                     o.beta * nodes[j].volume()};
+                      }
+                    Assert(bond == all_bonds.data() + offsets[i + 1],
+                           ExcInternalError());
+                    sort_by_dof(first, bond, keyed);
+                  }
+            },
+            256);
+        }
+      else
+        {
+          // The bucket search, one node after the other.
+          std::vector<std::vector<Bond>>                        lists(n);
+          std::vector<std::pair<types::global_dof_index, Bond>> keyed;
+          auto build = [&](const unsigned int i) {
+            const Point<dim>          &x   = nodes[i].location;
+            const std::array<int, dim> key = key_of(x);
+            std::array<int, dim>       k;
+            const unsigned int         n_adjacent = std::pow(3, dim);
+            for (unsigned int a = 0; a < n_adjacent; ++a)
+              {
+                unsigned int code = a;
+                for (unsigned int d = 0; d < dim; ++d, code /= 3)
+                  k[d] = key[d] + static_cast<int>(code % 3) - 1;
+                const auto bucket_nodes = buckets.find(k);
+                if (bucket_nodes == buckets.end())
+                  continue;
+                for (const unsigned int j : bucket_nodes->second)
+                  if (j != i &&
+                      x.distance_square(nodes[j].location) < reach * reach)
+                    {
+                      const double beta = weight_of(i, j);
+                      if (beta > 0)
+                        lists[i].push_back({j, beta * nodes[j].volume()});
+                    }
+              }
+            sort_by_dof(lists[i].data(),
+                        lists[i].data() + lists[i].size(),
+                        keyed);
+            n_bonds_of[i] = lists[i].size();
+            stored[i]     = 1;
+          };
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            build(i);
+          if (with_ghost_lists)
+            for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+              for (const Bond &bond : lists[i])
+                if (!listed[bond.neighbor])
+                  {
+                    listed[bond.neighbor] = 1;
+                    build(bond.neighbor);
+                  }
+          offsets.assign(n + 1, 0);
+          for (unsigned int i = 0; i < n; ++i)
+            offsets[i + 1] = offsets[i] + lists[i].size();
+          all_bonds.clear();
+          all_bonds.reserve(offsets[n]);
+          for (const auto &list : lists)
+            all_bonds.insert(all_bonds.end(), list.begin(), list.end());
         }
       owned_bonds = 0;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         owned_bonds += n_bonds_of[i];
-      if (with_ghost_lists)
-        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-          {
-            for (const Bond &bond : lists[i])
-              if (!listed[bond.neighbor])
-                {
-                  listed[bond.neighbor] = true;
-                  build(bond.neighbor);
-                  release(bond.neighbor);
-                }
-            if (full[i])
-              for (const auto &o : full_stencil)
-                {
-                  std::array<std::int64_t, dim> x = grid.coordinates(i);
-                  for (unsigned int d = 0; d < dim; ++d)
-                    x[d] += o.offset[d];
-                  const int j = grid.node_at(x);
-                  Assert(j >= 0, ExcInternalError());
-                  if (!listed[j])
-                    {
-                      listed[j] = true;
-                      build(j);
-                      release(j);
-                    }
-                }
-            release(i);
-          }
-      else
-        for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-          release(i);
-
-      offsets.assign(n + 1, 0);
-      for (unsigned int i = 0; i < n; ++i)
-        offsets[i + 1] = offsets[i] + lists[i].size();
-      all_bonds.clear();
-      all_bonds.reserve(offsets[n]);
-      for (const auto &list : lists)
-        all_bonds.insert(all_bonds.end(), list.begin(), list.end());
     }
 
 

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <sstream>
 
@@ -42,10 +43,10 @@ namespace PeriDEAL
       // vertices are 2^dim distinct corners. (Comparing cell.measure() with
       // the box volume instead loses digits to cancellation on small cells
       // far from the origin and rejected fine Cartesian meshes.)
-      const BoundingBox<dim> box       = cell.bounding_box();
-      const double           tolerance = 1e-10 * cell.diameter();
-      bool                   is_box    = cell.n_vertices() == (1u << dim);
-      std::vector<bool>      corner_seen(1u << dim, false);
+      const BoundingBox<dim>      box       = cell.bounding_box();
+      const double                tolerance = 1e-10 * cell.diameter();
+      bool                        is_box    = cell.n_vertices() == (1u << dim);
+      std::array<bool, 1u << dim> corner_seen{};
       for (const unsigned int v : cell.vertex_indices())
         {
           unsigned int corner = 0;
@@ -115,6 +116,7 @@ namespace PeriDEAL
                              "FESystem(FE_DGQ(0), dim): one node per cell."));
 
       all_nodes.clear();
+      all_nodes.reserve(dof_handler.n_locally_owned_dofs() / dim);
       double                               local_max_diameter = 0;
       std::vector<types::global_dof_index> dof_indices(dim);
       for (const auto &cell : dof_handler.active_cell_iterators())
@@ -127,10 +129,21 @@ namespace PeriDEAL
               {
                 // A hash of the seed, the CellId and the direction,
                 // uniform in [-1, 1): the same offset on every partition.
+                // The key: the bits of the cell's centre (FNV-1a over its
+                // coordinates), so that a node's offset depends on where
+                // its cell is, not on how the mesh was built (coarse cells
+                // and refinements, hence CellIds, differ between ways of
+                // making the same cells) nor on the partition.
                 std::uint64_t key = 14695981039346656037ULL;
-                for (const char c : cell->id().to_string())
-                  key =
-                    (key ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const double  c = node.location[d];
+                    std::uint64_t bits;
+                    std::memcpy(&bits, &c, sizeof bits);
+                    for (unsigned int b = 0; b < 8; ++b)
+                      key =
+                        (key ^ ((bits >> (8 * b)) & 0xffu)) * 1099511628211ULL;
+                  }
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     std::uint64_t z =

@@ -49,32 +49,64 @@ namespace PeriDEAL
         }
       stencil_weighted_volume = m0;
       m.assign(n, 0.);
-      std::vector<std::pair<std::array<double, dim>, double>> terms;
-      for (unsigned int i = 0; i < n; ++i)
-        if (lists->has_full_stencil(i))
-          m[i] = m0;
-        else if (lists->has_list(i))
-          {
-            // Summed in the order of the bond vectors (lexicographic): the
-            // neighbour search's order may depend on the partition, and
-            // m_i must not, to the last bit.
-            terms.clear();
-            for (const auto &bond : lists->bonds(i))
+      // Threaded over the nodes: each writes its own m_i, summed in the
+      // order of the bond vectors (lexicographic): the neighbour search's
+      // order may depend on the partition, and m_i must not, to the last
+      // bit. On the lattice the stencil's order (lexicographic in the
+      // offsets) is that order whenever the nodes sit on the lattice to
+      // the bit; the terms are placed by stencil index, checked to be in
+      // order, and sorted only where they are not.
+      const std::size_t stencil_size = lists->stencil().size();
+      parallel::apply_to_subranges(
+        0u,
+        n,
+        [&](const unsigned int begin, const unsigned int end) {
+          std::vector<std::pair<std::array<double, dim>, double>> terms,
+            by_index(stencil_size);
+          std::vector<char> present(stencil_size, 0);
+          for (unsigned int i = begin; i < end; ++i)
+            if (lists->has_full_stencil(i))
+              m[i] = m0;
+            else if (lists->has_list(i))
               {
-                const Tensor<1, dim> xi =
-                  (*nodes)[bond.neighbor].location - (*nodes)[i].location;
-                const double            r = xi.norm();
-                std::array<double, dim> key;
-                for (unsigned int d = 0; d < dim; ++d)
-                  key[d] = xi[d];
-                terms.emplace_back(key,
-                                   model->influence(r, horizon) * r * r *
-                                     bond.weight);
+                terms.clear();
+                for (const auto &bond : lists->bonds(i))
+                  {
+                    const Tensor<1, dim> xi =
+                      (*nodes)[bond.neighbor].location - (*nodes)[i].location;
+                    const double            r = xi.norm();
+                    std::array<double, dim> key;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      key[d] = xi[d];
+                    const std::pair<std::array<double, dim>, double> term(
+                      key,
+                      model->influence(r, horizon) * r * r * bond.weight);
+                    const int k = stencil_size > 0 ?
+                                    lists->stencil_index(i, bond.neighbor) :
+                                    -1;
+                    if (k >= 0 && !present[k])
+                      {
+                        by_index[k] = term;
+                        present[k]  = 1;
+                      }
+                    else
+                      terms.push_back(term);
+                  }
+                // (Terms off the stencil, none on a lattice, went first:
+                // then the check below fails and they are sorted.)
+                for (std::size_t k = 0; k < stencil_size; ++k)
+                  if (present[k])
+                    {
+                      terms.push_back(by_index[k]);
+                      present[k] = 0;
+                    }
+                if (!std::is_sorted(terms.begin(), terms.end()))
+                  std::sort(terms.begin(), terms.end());
+                for (const auto &term : terms)
+                  m[i] += term.second;
               }
-            std::sort(terms.begin(), terms.end());
-            for (const auto &term : terms)
-              m[i] += term.second;
-          }
+        },
+        1024);
 
       // The shared stencil: slot offsets and per-offset constants.
       stencil = Stencil();

@@ -28,6 +28,11 @@ namespace PeriDEAL
       //   + |sum_j a_ij n_c| A_i.
       const unsigned int  n = nodes->size();
       std::vector<double> A(n, 0.);
+      // (for_each_bond_constants() reads a box offset per stencil offset.)
+      std::vector<std::ptrdiff_t> no_delta(layout.use_lattice ?
+                                             stencil.g.size() :
+                                             0,
+                                           0);
       if (state_based)
         for (const unsigned int list : {0u, 1u})
           {
@@ -36,7 +41,7 @@ namespace PeriDEAL
               double sum = 0;
               for_each_bond_constants(i,
                                       0,
-                                      {},
+                                      no_delta,
                                       [&](const std::size_t,
                                           const std::ptrdiff_t,
                                           const double *nv,
@@ -50,22 +55,35 @@ namespace PeriDEAL
                                       });
               A[i] = 2 * std::abs(s_slot[layout.slot[i]]) * sum;
             };
+            // Threaded: each node writes its own A_i.
             if (list == 0)
-              {
-                for (const auto &chunk : theta_work().chunks)
-                  for (unsigned int l = 0; l < chunk.length; ++l)
-                    add(layout.node_of_slot(chunk.first_slot + l));
-              }
+              parallel::apply_to_subranges(
+                std::size_t(0),
+                theta_work().chunks.size(),
+                [&](const std::size_t begin, const std::size_t end) {
+                  for (std::size_t c = begin; c < end; ++c)
+                    {
+                      const auto &chunk = theta_work().chunks[c];
+                      for (unsigned int l = 0; l < chunk.length; ++l)
+                        add(layout.node_of_slot(chunk.first_slot + l));
+                    }
+                },
+                16);
             else
-              for (const unsigned int i : theta_work().list_nodes)
-                add(i);
+              parallel::apply_to_subranges(
+                std::size_t(0),
+                theta_work().list_nodes.size(),
+                [&](const std::size_t begin, const std::size_t end) {
+                  for (std::size_t b = begin; b < end; ++b)
+                    add(theta_work().list_nodes[b]);
+                },
+                256);
           }
-      std::vector<std::ptrdiff_t> no_delta(layout.use_lattice ?
-                                             stencil.g.size() :
-                                             0,
-                                           0);
-      double largest = 0;
-      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+      // Threaded over the owned nodes: each writes the largest of its own
+      // rows (a maximum: the same whatever the split).
+      std::vector<double> node_largest(nodes->n_owned(), 0.);
+      const auto          row_bound = [&](const unsigned int i) {
+        double largest = 0;
         {
           const double s_i      = s_slot[layout.slot[i]];
           double       row[dim] = {}, C[dim] = {};
@@ -117,6 +135,19 @@ namespace PeriDEAL
                   std::max(largest, sum / (density * (*nodes)[i].volume()));
               }
         }
+        node_largest[i] = largest;
+      };
+      parallel::apply_to_subranges(
+        0u,
+        nodes->n_owned(),
+        [&](const unsigned int begin, const unsigned int end) {
+          for (unsigned int i = begin; i < end; ++i)
+            row_bound(i);
+        },
+        1024);
+      double largest = 0;
+      for (const double value : node_largest)
+        largest = std::max(largest, value);
       return Utilities::MPI::max(largest, nodes->get_communicator());
     }
 

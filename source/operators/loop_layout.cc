@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
 
 #include <perideal/operators/loop_layout.h>
 
@@ -168,35 +169,57 @@ namespace PeriDEAL
                     ExcMessage("The stencil has more than 65535 offsets: "
                                "use a smaller m-ratio."));
       // Stencil indices of the bonds of stored lists on the lattice, in
-      // bond order (looked up once).
+      // bond order (looked up once), and the same bonds' numbers k in
+      // increasing stencil index: lists are written in this order, fixed
+      // by the bonds (the neighbour search's order may depend on the
+      // partition, and a node's sum must not). Threaded: each node writes
+      // its own range; the order by placing each k at its stencil index
+      // (distinct within a node), no sort.
       bond_stencil_first.assign(use_lattice ? n + 1 : 0, 0);
-      bond_stencil_index.clear();
       if (use_lattice)
         for (unsigned int i = 0; i < n; ++i)
-          {
-            if (lists->has_list(i) && !lists->has_full_stencil(i))
-              for (const auto &bond : lists->bonds(i))
-                bond_stencil_index.push_back(
-                  lists->stencil_index(i, bond.neighbor));
-            bond_stencil_first[i + 1] = bond_stencil_index.size();
-          }
-      // The same bonds' numbers k in increasing stencil index: lists are
-      // written in this order, fixed by the bonds (the neighbour search's
-      // order may depend on the partition, and a node's sum must not).
-      bond_in_stencil_order.resize(bond_stencil_index.size());
+          bond_stencil_first[i + 1] =
+            bond_stencil_first[i] +
+            (lists->has_list(i) && !lists->has_full_stencil(i) ?
+               lists->n_bonds(i) :
+               0);
+      const std::size_t n_list_bonds = use_lattice ? bond_stencil_first[n] : 0;
+      bond_stencil_index.resize(n_list_bonds);
+      bond_in_stencil_order.resize(n_list_bonds);
       if (use_lattice)
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const std::size_t first = bond_stencil_first[i];
-            const std::size_t size  = bond_stencil_first[i + 1] - first;
-            std::uint16_t    *order = bond_in_stencil_order.data() + first;
-            for (std::size_t k = 0; k < size; ++k)
-              order[k] = static_cast<std::uint16_t>(k);
-            std::sort(order, order + size, [&](const auto a, const auto b) {
-              return bond_stencil_index[first + a] <
-                     bond_stencil_index[first + b];
-            });
-          }
+        parallel::apply_to_subranges(
+          0u,
+          n,
+          [&](const unsigned int begin, const unsigned int end) {
+            std::vector<int> at(lists->stencil().size(), -1);
+            for (unsigned int i = begin; i < end; ++i)
+              {
+                const std::size_t first = bond_stencil_first[i];
+                const std::size_t size  = bond_stencil_first[i + 1] - first;
+                if (size == 0)
+                  continue;
+                const auto bonds = lists->bonds(i);
+                for (std::size_t k = 0; k < size; ++k)
+                  {
+                    const int index =
+                      lists->stencil_index(i, bonds[k].neighbor);
+                    AssertThrow(index >= 0 && at[index] < 0,
+                                ExcInternalError());
+                    bond_stencil_index[first + k] =
+                      static_cast<std::uint16_t>(index);
+                    at[index] = static_cast<int>(k);
+                  }
+                std::uint16_t *order = bond_in_stencil_order.data() + first;
+                std::size_t    m     = 0;
+                for (std::size_t index = 0; index < at.size(); ++index)
+                  if (at[index] >= 0)
+                    {
+                      order[m++] = static_cast<std::uint16_t>(at[index]);
+                      at[index]  = -1;
+                    }
+              }
+          },
+          256);
 
       run_eligible.assign(n, 0);
       stencil_opposite.clear();

@@ -28,8 +28,7 @@ namespace PeriDEAL
       TimerOutput::Scope scope(timer, "mesh");
       if (const auto coarse = mesh_generator->coarse_size())
         check_memory_estimate(*coarse);
-      mesh_generator->create_coarse_mesh(*triangulation);
-      triangulation->refine_global(global_refinements);
+      mesh_generator->create_mesh(*triangulation, global_refinements);
 
       // The smallest cell side and the extent of the body.
       h = std::numeric_limits<double>::max();
@@ -107,8 +106,8 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)            \
-  template void Simulator<dim>::make_mesh(); \
+#define PERIDEAL_INSTANTIATE(dim)                                              \
+  template void                                Simulator<dim>::make_mesh();    \
   template std::pair<std::string, std::string> Simulator<dim>::horizon_entry() \
     const;
     PERIDEAL_INSTANTIATE(1)

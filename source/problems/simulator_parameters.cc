@@ -78,7 +78,11 @@ namespace PeriDEAL
                           default_list(dim, "10"),
                           Patterns::List(Patterns::Integer(1), dim, dim),
                           "Number of cells of the box in each direction, "
-                          "before global refinement.");
+                          "before global refinement. (The box is built from "
+                          "these divided by the largest common power of 2, "
+                          "refined back: the same cells and nodes in a "
+                          "fraction of the time; a multiple of a large power "
+                          "of 2 builds fastest.)");
         prm.declare_entry("Global refinements",
                           "0",
                           Patterns::Integer(0, 12),
@@ -98,7 +102,7 @@ namespace PeriDEAL
                           "1",
                           Patterns::Integer(0),
                           "The seed of 'Node perturbation': the offsets are a "
-                          "hash of it and of each cell's id, the same on "
+                          "hash of it and of each cell's centre, the same on "
                           "every number of processes.");
         prm.declare_entry("Mesh file",
                           "",

@@ -74,6 +74,15 @@ namespace PeriDEAL
       int
       node_at(const std::array<std::int64_t, dim> &x) const;
 
+      /**
+       * Whether the local box holds every lattice point within @p margin
+       * (in every direction, a cube) of @p x: then node_at_slot() of the
+       * slots around x needs no bounds check.
+       */
+      bool
+      box_holds(const std::array<std::int64_t, dim> &x,
+                const std::int64_t                   margin) const;
+
       /// The slot difference of the lattice offset @p offset.
       std::ptrdiff_t
       slot_offset(const std::array<int, dim> &offset) const;

@@ -141,11 +141,13 @@ namespace PeriDEAL
       used_uniform_grid_table() const;
 
     private:
-      std::vector<std::size_t>                     offsets; // size n_nodes + 1
-      std::vector<Bond>                            all_bonds;
-      std::vector<bool>                            listed;
-      std::vector<bool>                            full;
-      std::vector<bool>                            stored;
+      std::vector<std::size_t> offsets; // size n_nodes + 1
+      std::vector<Bond>        all_bonds;
+      /// Per node, as bytes (the threads of reinit() set them side by
+      /// side, which std::vector<bool> forbids).
+      std::vector<std::uint8_t>                    listed;
+      std::vector<std::uint8_t>                    full;
+      std::vector<std::uint8_t>                    stored;
       std::size_t                                  owned_bonds = 0;
       bool                                         uniform     = false;
       Lattice<dim>                                 grid;

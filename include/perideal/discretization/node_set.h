@@ -112,9 +112,10 @@ namespace PeriDEAL
        * cell's centre plus an offset whose component d is uniform in
        * \f$[-f\,h_d, f\,h_d]\f$, \f$h_d\f$ the cell's side along d and
        * f = @p fraction (0 <= f < 0.5: the node stays inside its cell). The
-       * offsets are a hash of @p seed, the cell's CellId and d: the same on
-       * every partition and run. The cell (and so the standard scheme's
-       * volumes) is unchanged.
+       * offsets are a hash of @p seed, the bits of the cell's centre and d:
+       * the same on every partition and run, and however the mesh was made
+       * (coarse cells and refinements). The cell (and so the standard
+       * scheme's volumes) is unchanged.
        */
       void
       set_perturbation(const double fraction, const std::uint64_t seed);

@@ -21,6 +21,9 @@ namespace PeriDEAL
      * \f$e^{-r^2/\delta^2}\f$ (Scabbia et al. 2022, Eq. 10), "constant"
      * \f$1\f$, "conical" \f$1 - r/\delta\f$ and "inverse distance"
      * \f$\delta/r\f$ (the influence function of LAMMPS's `peri/lps`).
+     *
+     * value() is called from several threads at once (the operator's
+     * set-up is threaded): an implementation must not change state.
      */
     class InfluenceFunction
     {

@@ -52,7 +52,9 @@ namespace PeriDEAL
      *   (BondOperator::gershgorin_eigenvalue_bound(); for bond-based models
      *   the bound of Silling & Askari 2005). A step above the bound is an
      *   error unless 'Allow unstable time step' is set. The power-method
-     *   estimate of the actual limit is printed next to it.
+     *   estimate of the actual limit (60 force passes) is printed next to
+     *   it when the step may exceed the bound or does; it is information
+     *   only and costs nothing otherwise.
      * - **Set-up.** Initial displacement and velocity (functions); the
      *   Dirichlet layers of 'Boundary conditions' prescribe the displacement
      *   or the velocity (function of x and t); body forces and tractions of
@@ -347,7 +349,8 @@ namespace PeriDEAL
       double        loop_start      = 0;
       std::uint64_t loop_start_step = 0;
       /// The hybrid scheme's settings (nullptr: another scheme), the
-      /// all-standard stability bounds (Gershgorin, power method), and the
+      /// all-standard stability bounds (Gershgorin; the power method only
+      /// when choose_time_step() prints its estimate, 0 otherwise), and the
       /// counts: all nodes, standard nodes now, scans of the bonds.
       const Quadrature::HybridSettings<dim> *hybrid = nullptr;
       double        standard_lambda = 0, standard_power = 0;

@@ -59,6 +59,18 @@ namespace PeriDEAL
       virtual void
       create_coarse_mesh(Triangulation<dim> &triangulation) const = 0;
 
+      /**
+       * Build the coarse mesh into @p triangulation and refine it globally
+       * @p global_refinements times ('Mesh/Global refinements'). The
+       * default calls create_coarse_mesh() and
+       * Triangulation::refine_global(); a kind may build the same fine mesh
+       * faster (SubdividedBox: fewer coarse cells, refined more often).
+       * Collective.
+       */
+      virtual void
+      create_mesh(Triangulation<dim> &triangulation,
+                  const unsigned int  global_refinements) const;
+
       /// The size of the coarse mesh, if known before create_coarse_mesh().
       /// Default: unknown (no memory guard before the mesh exists).
       virtual std::optional<CoarseSize>

@@ -57,7 +57,11 @@ namespace PeriDEAL
       // is then either a standard row or a collocation row, so the larger
       // of the two operators' bounds covers them all (choose_time_step()).
       standard_lambda = bond_operator.gershgorin_eigenvalue_bound(rho);
-      standard_power  = bond_operator.estimate_largest_eigenvalue(rho, 60);
+      // The power-method estimate is information only (choose_time_step()
+      // prints it when a step is given or may be unstable).
+      standard_power = given_time_step > 0 || allow_unstable ?
+                         bond_operator.estimate_largest_eigenvalue(rho, 60) :
+                         0.;
 
       // The fixed standard region: boxes and boundary layers, each of which
       // must hold a node.

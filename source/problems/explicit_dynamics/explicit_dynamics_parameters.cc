@@ -40,9 +40,11 @@ namespace PeriDEAL
                         Patterns::Bool(),
                         "Accept a 'Time step' above the stability bound (it "
                         "is an error otherwise). The bound is conservative "
-                        "(by about 1.5x); the printed power-method estimate "
-                        "of the actual limit of velocity Verlet can be a few "
-                        "per cent too large.");
+                        "(by about 1.5x). With 'true', or a 'Time step' "
+                        "above the bound, the run also prints the "
+                        "power-method estimate of the actual limit of "
+                        "velocity Verlet (60 force passes; it can be a few "
+                        "per cent too large).");
       prm.declare_entry("Kinematics",
                         "finite deformation",
                         Patterns::Selection("finite deformation|small strain"),
