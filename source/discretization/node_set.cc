@@ -127,7 +127,7 @@ namespace PeriDEAL
             node.location = node.cell.center();
             if (perturbation > 0)
               {
-                // A hash of the seed, the CellId and the direction,
+                // A hash of the seed, the cell's centre and the direction,
                 // uniform in [-1, 1): the same offset on every partition.
                 // The key: the bits of the cell's centre (FNV-1a over its
                 // coordinates), so that a node's offset depends on where

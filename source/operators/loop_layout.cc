@@ -203,8 +203,9 @@ namespace PeriDEAL
                   {
                     const int index =
                       lists->stencil_index(i, bonds[k].neighbor);
-                    AssertThrow(index >= 0 && at[index] < 0,
-                                ExcInternalError());
+                    // (Lists on the lattice hold stencil offsets, each
+                    // once: an invariant, checked in debug builds.)
+                    Assert(index >= 0 && at[index] < 0, ExcInternalError());
                     bond_stencil_index[first + k] =
                       static_cast<std::uint16_t>(index);
                     at[index] = static_cast<int>(k);

@@ -17,6 +17,7 @@
 
 #include <perideal/base/collective_checks.h>
 #include <perideal/base/exceptions.h>
+#include <perideal/problems/make_triangulation.h>
 #include <perideal/problems/simulator.h>
 
 #include <algorithm>
@@ -27,29 +28,27 @@ namespace PeriDEAL
 {
   namespace Problems
   {
-    namespace
+    template <int dim>
+    std::unique_ptr<parallel::TriangulationBase<dim>>
+    make_triangulation(const MPI_Comm communicator)
     {
-      /**
-       * The mesh of a @p dim-dimensional run: p4est in 2D and 3D; in 1D,
-       * where p4est has none, a shared triangulation (every process holds
-       * the whole line) partitioned in z-order, which for a line is into
-       * contiguous pieces.
-       */
-      template <int dim>
-      std::unique_ptr<parallel::TriangulationBase<dim>>
-      make_triangulation(const MPI_Comm communicator)
-      {
-        if constexpr (dim == 1)
-          return std::make_unique<parallel::shared::Triangulation<1>>(
-            communicator,
-            Triangulation<1>::none,
-            false,
-            parallel::shared::Triangulation<1>::partition_zorder);
-        else
-          return std::make_unique<parallel::distributed::Triangulation<dim>>(
-            communicator);
-      }
-    } // namespace
+      if constexpr (dim == 1)
+        return std::make_unique<parallel::shared::Triangulation<1>>(
+          communicator,
+          Triangulation<1>::none,
+          false,
+          parallel::shared::Triangulation<1>::partition_zorder);
+      else
+        return std::make_unique<parallel::distributed::Triangulation<dim>>(
+          communicator);
+    }
+
+    template std::unique_ptr<parallel::TriangulationBase<1>>
+    make_triangulation<1>(const MPI_Comm);
+    template std::unique_ptr<parallel::TriangulationBase<2>>
+    make_triangulation<2>(const MPI_Comm);
+    template std::unique_ptr<parallel::TriangulationBase<3>>
+    make_triangulation<3>(const MPI_Comm);
 
 
     template <int dim>

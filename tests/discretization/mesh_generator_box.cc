@@ -16,18 +16,15 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <deal.II/distributed/shared_tria.h>
-#include <deal.II/distributed/tria.h>
-
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
+#include <perideal/problems/make_triangulation.h>
 #include <perideal/problems/mesh_generator.h>
 
 #include <array>
 #include <iostream>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -44,21 +41,6 @@ namespace
     for (unsigned int d = 0; d < dim; ++d)
       k[d] = p[d];
     return k;
-  }
-
-
-  template <int dim>
-  std::unique_ptr<Triangulation<dim>>
-  make_triangulation(const MPI_Comm comm)
-  {
-    if constexpr (dim == 1)
-      return std::make_unique<parallel::shared::Triangulation<1>>(
-        comm,
-        Triangulation<1>::none,
-        false,
-        parallel::shared::Triangulation<1>::partition_zorder);
-    else
-      return std::make_unique<parallel::distributed::Triangulation<dim>>(comm);
   }
 
 
@@ -87,7 +69,7 @@ namespace
     auto generator =
       Problems::MeshGeneratorRegistry<dim>::create("subdivided box");
     generator->parse_parameters(prm);
-    auto triangulation = make_triangulation<dim>(comm);
+    auto triangulation = Problems::make_triangulation<dim>(comm);
     generator->create_mesh(*triangulation, refinements);
 
     // The reference: the fine box built directly.
