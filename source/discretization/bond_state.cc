@@ -1,9 +1,12 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/partitioner.h>
 
 #include <perideal/discretization/bond_state.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 namespace PeriDEAL
@@ -27,7 +30,14 @@ namespace PeriDEAL
       local.clear();
       changed.clear();
       is_changed.assign(n, false);
-      new_owned_bits = 0;
+      new_owned_bits   = 0;
+      routes_built     = false;
+      exchange_seconds = 0;
+      sent_pairs       = 0;
+      send_rank.clear();
+      receive_rank.clear();
+      send_first.clear();
+      send_to.clear();
     }
 
 
@@ -59,8 +69,7 @@ namespace PeriDEAL
       AssertIndexRange(k, first[i + 1] - first[i]);
       if (!set(i, k))
         return;
-      pending.emplace_back((*nodes)[i].dofs[0],
-                           (*nodes)[neighbor(i, k)].dofs[0]);
+      pending.push_back({i, neighbor(i, k), true});
     }
 
 
@@ -81,7 +90,7 @@ namespace PeriDEAL
           set(j, kj);
         }
       if (new_i && send)
-        pending.emplace_back((*nodes)[i].dofs[0], (*nodes)[j].dofs[0]);
+        pending.push_back({i, j, false});
     }
 
 
@@ -145,85 +154,167 @@ namespace PeriDEAL
     std::size_t
     BondState<dim>::synchronize()
     {
+      const std::uint64_t twice = exchange();
+      const MPI_Comm      comm  = nodes->get_communicator();
+      return (Utilities::MPI::n_mpi_processes(comm) == 1 ?
+                twice :
+                Utilities::MPI::sum(twice, comm)) /
+             2;
+    }
+
+
+    template <int dim>
+    void
+    BondState<dim>::build_routes()
+    {
+      // One entry per node: the partitioner's import lists are the owned
+      // nodes that other processes hold as ghosts, and who; its ghost
+      // targets the owners of the ghosts here.
+      const auto partitioner_ptr = nodes->make_node_partitioner();
+      const Utilities::MPI::Partitioner &partitioner = *partitioner_ptr;
+
+      // Owned nodes by their place in the owned range.
+      std::vector<unsigned int> node_at(nodes->n_owned());
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        node_at[partitioner.global_to_local((*nodes)[i].dofs[0] / dim)] = i;
+      send_rank.clear();
+      std::vector<std::vector<unsigned int>> to(nodes->n_owned());
+      const auto &ranges = partitioner.import_indices();
+      std::size_t r      = 0;
+      for (const auto &[rank, count] : partitioner.import_targets())
+        {
+          const unsigned int target = send_rank.size();
+          send_rank.push_back(rank);
+          for (unsigned int left = count; left > 0; ++r)
+            {
+              for (unsigned int e = ranges[r].first; e < ranges[r].second; ++e)
+                to[node_at[e]].push_back(target);
+              left -= ranges[r].second - ranges[r].first;
+            }
+        }
+      send_first.assign(nodes->n_owned() + 1, 0);
+      send_to.clear();
+      for (unsigned int i = 0; i < nodes->n_owned(); ++i)
+        {
+          send_to.insert(send_to.end(), to[i].begin(), to[i].end());
+          send_first[i + 1] = send_to.size();
+        }
+      receive_rank.clear();
+      for (const auto &[rank, count] : partitioner.ghost_targets())
+        receive_rank.push_back(rank);
+      routes_built = true;
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondState<dim>::exchange()
+    {
+      const auto         start   = std::chrono::steady_clock::now();
       const MPI_Comm     comm    = nodes->get_communicator();
       const unsigned int n_procs = Utilities::MPI::n_mpi_processes(comm);
-      // Pairs without orientation, each once, from every process: a raw
-      // MPI_Allgatherv (Utilities::MPI::all_gather() would serialise and
-      // compress the pairs, which cost 15 % of a heavily breaking run even
-      // on one process). On one process only break_bond()'s pairs need
-      // their reverse here; break_pair() set both ends already.
-      std::vector<std::uint64_t> mine;
-      mine.reserve(2 * pending.size());
+      // The reverse bonds of break_bond()'s pairs, here (break_pair() set
+      // both ends already).
       for (const auto &p : pending)
+        if (p.reverse && lists->has_list(p.j))
+          if (const int k = bond_index(p.j, p.i); k >= 0)
+            set(p.j, k);
+
+      if (n_procs > 1)
         {
-          mine.push_back(std::min(p.first, p.second));
-          mine.push_back(std::max(p.first, p.second));
-        }
-      pending.clear();
-      std::vector<std::uint64_t> gathered;
-      if (n_procs == 1)
-        gathered.swap(mine);
-      else
-        {
-          const int        n_mine = static_cast<int>(mine.size());
-          std::vector<int> counts(n_procs), displacements(n_procs + 1, 0);
-          int              ierr =
-            MPI_Allgather(&n_mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-          AssertThrowMPI(ierr);
-          for (unsigned int p = 0; p < n_procs; ++p)
-            displacements[p + 1] = displacements[p] + counts[p];
-          if (displacements[n_procs] > 0)
+          if (!routes_built)
+            build_routes();
+          // One message to each process that holds owned nodes of this one
+          // (possibly empty: it waits for one from each): the pairs with an
+          // owned end it holds, as the ends' global keys.
+          std::vector<std::vector<std::uint64_t>> out(send_rank.size());
+          std::vector<std::size_t>                last(
+            send_rank.size(),
+            std::numeric_limits<std::size_t>::max());
+          for (std::size_t q = 0; q < pending.size(); ++q)
+            for (const unsigned int e : {pending[q].i, pending[q].j})
+              if (e < nodes->n_owned())
+                for (std::size_t t = send_first[e]; t < send_first[e + 1]; ++t)
+                  if (last[send_to[t]] != q)
+                    {
+                      last[send_to[t]] = q;
+                      out[send_to[t]].push_back((*nodes)[pending[q].i].dofs[0]);
+                      out[send_to[t]].push_back((*nodes)[pending[q].j].dofs[0]);
+                    }
+          // A tag of its own, above deal.II's (mpi_tags.h).
+          constexpr int            tag = 7349;
+          std::vector<MPI_Request> requests(send_rank.size());
+          for (std::size_t t = 0; t < send_rank.size(); ++t)
             {
-              gathered.resize(displacements[n_procs]);
-              ierr = MPI_Allgatherv(mine.data(),
-                                    n_mine,
-                                    MPI_UINT64_T,
-                                    gathered.data(),
-                                    counts.data(),
-                                    displacements.data(),
-                                    MPI_UINT64_T,
-                                    comm);
+              sent_pairs += out[t].size() / 2;
+              const int ierr = MPI_Isend(out[t].data(),
+                                         static_cast<int>(out[t].size()),
+                                         MPI_UINT64_T,
+                                         send_rank[t],
+                                         tag,
+                                         comm,
+                                         &requests[t]);
               AssertThrowMPI(ierr);
             }
-        }
-      std::vector<std::pair<std::uint64_t, std::uint64_t>> all;
-      all.reserve(gathered.size() / 2);
-      for (std::size_t q = 0; q + 1 < gathered.size(); q += 2)
-        all.emplace_back(gathered[q], gathered[q + 1]);
-      std::sort(all.begin(), all.end());
-      all.erase(std::unique(all.begin(), all.end()), all.end());
-
-      if (!all.empty())
-        {
-          // Global key -> local node, built once (the first time pairs
-          // arrive).
-          if (local.empty())
+          std::vector<std::uint64_t> in;
+          for (const int source : receive_rank)
             {
-              local.reserve(nodes->size());
-              for (unsigned int i = 0; i < nodes->size(); ++i)
-                local.emplace((*nodes)[i].dofs[0], i);
+              MPI_Status status;
+              int        ierr = MPI_Probe(source, tag, comm, &status);
+              AssertThrowMPI(ierr);
+              int count = 0;
+              ierr      = MPI_Get_count(&status, MPI_UINT64_T, &count);
+              AssertThrowMPI(ierr);
+              in.resize(count);
+              ierr = MPI_Recv(in.data(),
+                              count,
+                              MPI_UINT64_T,
+                              source,
+                              tag,
+                              comm,
+                              MPI_STATUS_IGNORE);
+              AssertThrowMPI(ierr);
+              if (count == 0)
+                continue;
+              // Global key -> local node, built once (the first time pairs
+              // arrive).
+              if (local.empty())
+                {
+                  local.reserve(nodes->size());
+                  for (unsigned int i = 0; i < nodes->size(); ++i)
+                    local.emplace((*nodes)[i].dofs[0], i);
+                }
+              const auto break_here = [&](const std::uint64_t a,
+                                          const std::uint64_t b) {
+                const auto ia = local.find(a), ib = local.find(b);
+                if (ia == local.end() || ib == local.end() ||
+                    !lists->has_list(ia->second))
+                  return;
+                const int k = bond_index(ia->second, ib->second);
+                if (k >= 0)
+                  set(ia->second, k);
+              };
+              for (std::size_t q = 0; q + 1 < in.size(); q += 2)
+                {
+                  break_here(in[q], in[q + 1]);
+                  break_here(in[q + 1], in[q]);
+                }
             }
-          auto break_here = [&](const std::uint64_t a, const std::uint64_t b) {
-            const auto ia = local.find(a), ib = local.find(b);
-            if (ia == local.end() || ib == local.end() ||
-                !lists->has_list(ia->second))
-              return;
-            const int k = bond_index(ia->second, ib->second);
-            if (k >= 0)
-              set(ia->second, k);
-          };
-          for (const auto &p : all)
-            {
-              break_here(p.first, p.second);
-              break_here(p.second, p.first);
-            }
+          const int ierr = MPI_Waitall(static_cast<int>(requests.size()),
+                                       requests.data(),
+                                       MPI_STATUSES_IGNORE);
+          AssertThrowMPI(ierr);
         }
+      pending.clear();
+      exchange_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
       // Every newly broken pair has set one bit at each of its two owned
       // ends (in break_bond(), break_pair() or just now), on whichever
       // processes own them.
-      const std::uint64_t twice = new_owned_bits;
-      new_owned_bits            = 0;
-      return (n_procs == 1 ? twice : Utilities::MPI::sum(twice, comm)) / 2;
+      const std::size_t twice = new_owned_bits;
+      new_owned_bits          = 0;
+      return twice;
     }
 
 

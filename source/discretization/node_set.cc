@@ -307,6 +307,30 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::shared_ptr<const Utilities::MPI::Partitioner>
+    NodeSet<dim>::make_node_partitioner() const
+    {
+      const types::global_dof_index        n_global = relevant.size() / dim;
+      IndexSet                             owned(n_global), all(n_global);
+      std::vector<types::global_dof_index> indices;
+      indices.reserve(all_nodes.size());
+      for (unsigned int i = 0; i < n_owned_nodes; ++i)
+        indices.push_back(all_nodes[i].dofs[0] / dim);
+      std::sort(indices.begin(), indices.end());
+      owned.add_indices(indices.begin(), indices.end());
+      owned.compress();
+      for (unsigned int i = n_owned_nodes; i < all_nodes.size(); ++i)
+        indices.push_back(all_nodes[i].dofs[0] / dim);
+      std::sort(indices.begin(), indices.end());
+      all.add_indices(indices.begin(), indices.end());
+      all.compress();
+      return std::make_shared<Utilities::MPI::Partitioner>(owned,
+                                                           all,
+                                                           communicator);
+    }
+
+
+    template <int dim>
     MPI_Comm
     NodeSet<dim>::get_communicator() const
     {

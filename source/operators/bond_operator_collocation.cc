@@ -194,7 +194,8 @@ namespace PeriDEAL
                           " > 1e12; choose another 'Collocation nodes' or "
                           "'Order', or 'fall back' to the standard scheme"));
       collocation_node.assign(nodes->size(), 0);
-      collocation_row = CollocationRow();
+      with_collocation = true;
+      collocation_row  = CollocationRow();
       collocation_theta.clear();
       collocation_theta_chunks.clear();
       theta_slot.resize_fast(0);
@@ -392,8 +393,7 @@ namespace PeriDEAL
               unsigned int       l0  = 0;
               if (!lps)
                 for (; l0 + block <= len; l0 += block)
-                  lanes(s0 + l0,
-                        std::integral_constant<unsigned int, block>());
+                  lanes(s0 + l0, std::integral_constant<unsigned int, block>());
               if (l0 == len)
                 continue;
               for (unsigned int a = 0; a < dim; ++a)

@@ -81,6 +81,7 @@ namespace PeriDEAL
           fits);
 
       collocation_node.assign(nodes->size(), 0);
+      with_collocation = true;
       node_row_of.assign(nodes->size(), -1);
       node_rows = NodeRows();
       for (unsigned int i = 0; i < n_owned; ++i)

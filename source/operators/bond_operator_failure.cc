@@ -68,6 +68,20 @@ namespace PeriDEAL
     BondOperator<dim>::commit_broken_bonds(
       Discretization::BondState<dim> &state)
     {
+      const std::size_t ends = commit_broken_bond_ends(state);
+      const MPI_Comm    comm = nodes->get_communicator();
+      return (Utilities::MPI::n_mpi_processes(comm) == 1 ?
+                ends :
+                Utilities::MPI::sum(ends, comm)) /
+             2;
+    }
+
+
+    template <int dim>
+    std::size_t
+    BondOperator<dim>::commit_broken_bond_ends(
+      Discretization::BondState<dim> &state)
+    {
       AssertThrow(&state == bond_state,
                   ExcMessage("commit_broken_bonds() needs the bond state "
                              "given to reinit()."));
@@ -115,10 +129,12 @@ namespace PeriDEAL
           }
         exceeded.clear();
       }
-      const std::size_t n_new = state.synchronize();
-      if (n_new > 0)
+      const std::size_t               n_ends  = state.exchange();
+      const std::vector<unsigned int> changed = state.take_changed_nodes();
+      // Local decisions only, except the one reduction with collocation
+      // nodes (with_collocation is the same on every process).
+      if (!changed.empty() || with_collocation)
         {
-          const std::vector<unsigned int> changed = state.take_changed_nodes();
           // A collocation node whose bond broke (from the standard end:
           // the switch of Eq. 65 missed it) becomes standard, counted.
           std::vector<unsigned int> missed;
@@ -133,14 +149,16 @@ namespace PeriDEAL
           // broken bonds, when another process had a missed node (1 and 2
           // processes broke different bonds on the Kalthoff-Winkler
           // impact).
-          update_work_lists(changed);
+          if (!changed.empty())
+            update_work_lists(changed);
           const bool any_missed =
+            with_collocation &&
             Utilities::MPI::max(missed.empty() ? 0 : 1,
                                 nodes->get_communicator()) == 1;
           if (any_missed)
             make_standard(missed);
         }
-      return n_new;
+      return n_ends;
     }
 
 
@@ -247,16 +265,18 @@ namespace PeriDEAL
     }
 
 
-#define PERIDEAL_INSTANTIATE(dim)                                 \
-  template void BondOperator<dim>::set_kinematics(                \
-    const bool,                                                   \
-    const std::vector<double> &);                                 \
-  template void BondOperator<dim>::record_exceeded(               \
-    const std::vector<ExceededBond> &) const;                     \
-  template std::size_t BondOperator<dim>::commit_broken_bonds(    \
-    Discretization::BondState<dim> &);                            \
-  template std::size_t BondOperator<dim>::count_exceeded_bonds(); \
-  template void        BondOperator<dim>::update_work_lists(      \
+#define PERIDEAL_INSTANTIATE(dim)                                  \
+  template void BondOperator<dim>::set_kinematics(                 \
+    const bool,                                                    \
+    const std::vector<double> &);                                  \
+  template void BondOperator<dim>::record_exceeded(                \
+    const std::vector<ExceededBond> &) const;                      \
+  template std::size_t BondOperator<dim>::commit_broken_bonds(     \
+    Discretization::BondState<dim> &);                             \
+  template std::size_t BondOperator<dim>::commit_broken_bond_ends( \
+    Discretization::BondState<dim> &);                             \
+  template std::size_t BondOperator<dim>::count_exceeded_bonds();  \
+  template void        BondOperator<dim>::update_work_lists(       \
     const std::vector<unsigned int> &);
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)

@@ -180,8 +180,9 @@ namespace PeriDEAL
 
       // Every node standard until use_collocation() says otherwise.
       collocation_node.clear();
-      collocation_row = CollocationRow();
-      node_rows       = NodeRows();
+      with_collocation = false;
+      collocation_row  = CollocationRow();
+      node_rows        = NodeRows();
       node_row_of.clear();
       collocation_theta.clear();
       collocation_theta_chunks.clear();

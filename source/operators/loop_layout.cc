@@ -46,24 +46,7 @@ namespace PeriDEAL
                                  "numbered consecutively from a multiple of "
                                  "dim (FESystem of FE_DGQ(0) without "
                                  "renumbering)."));
-          const types::global_dof_index n_global =
-            nodes->relevant_dofs().size() / dim;
-          IndexSet owned(n_global), relevant(n_global);
-          std::vector<types::global_dof_index> indices;
-          for (unsigned int i = 0; i < nodes->n_owned(); ++i)
-            indices.push_back((*nodes)[i].dofs[0] / dim);
-          std::sort(indices.begin(), indices.end());
-          owned.add_indices(indices.begin(), indices.end());
-          owned.compress();
-          indices.clear();
-          for (unsigned int i = 0; i < n; ++i)
-            indices.push_back((*nodes)[i].dofs[0] / dim);
-          std::sort(indices.begin(), indices.end());
-          relevant.add_indices(indices.begin(), indices.end());
-          relevant.compress();
-          partitioner = std::make_shared<Utilities::MPI::Partitioner>(owned,
-                                                                      relevant,
-                                                                      comm);
+          partitioner = nodes->make_node_partitioner();
           for (unsigned int i = 0; i < n; ++i)
             vector_index[i] =
               partitioner->global_to_local((*nodes)[i].dofs[0] / dim);

@@ -372,8 +372,8 @@ namespace PeriDEAL
 
 
     template <int dim>
-    void
-    FiniteCheck::check_state(
+    std::uint64_t
+    FiniteCheck::local_state_key(
       const Discretization::NodeSet<dim>                        &nodes,
       const std::vector<std::pair<const double *, std::size_t>> &arrays,
       const std::function<bool(unsigned int)>                   &finite_at,
@@ -381,7 +381,7 @@ namespace PeriDEAL
       const double                                               time,
       const std::string                                         &quantity,
       const std::string                                         &advice,
-      const MPI_Comm                                             comm)
+      std::string                                               &message) const
     {
       // A fast test first: x * 0 is 0 for a finite x and NaN otherwise, so
       // the sum is 0 exactly when every owned value is finite (one
@@ -409,24 +409,8 @@ namespace PeriDEAL
             bad_node = i;
             break;
           }
-      // One reduction for both: 0 when an input value was not finite on
-      // this process (it caused whatever followed), else the lowest bad
-      // DoF + 1.
-      const std::uint64_t key =
-        pending.set ? 0 : (bad == none ? none : bad + 1);
-      // MPI_Allreduce with MPI_UINT64_T, not Utilities::MPI::min(): that
-      // one (deal.II 9.4) returned the largest value on 2 processes for a
-      // key of 0 against 2^64 - 1, and a bad input value went unreported.
-      std::uint64_t first = none;
-      const int     ierr =
-        MPI_Allreduce(&key, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
-      AssertThrowMPI(ierr);
-      if (first == none)
-        return;
-      if (first == 0)
-        throw_on_any_rank(pending_message(step), comm);
-      std::string message;
-      if (key == first)
+      message.clear();
+      if (bad != none)
         {
           std::ostringstream s;
           s << quantity << " is not finite at step " << step << " (t = " << time
@@ -434,7 +418,109 @@ namespace PeriDEAL
             << advice << " The output written before this step is complete.";
           message = s.str();
         }
-      throw_on_any_rank(message, comm);
+      // One reduction for both: 0 when an input value was not finite on
+      // this process (it caused whatever followed), else the lowest bad
+      // DoF + 1.
+      return pending.set ? 0 : (bad == none ? none : bad + 1);
+    }
+
+
+    void
+    FiniteCheck::throw_for_key(const std::uint64_t key,
+                               const std::uint64_t first,
+                               const std::uint64_t step,
+                               const std::string  &message,
+                               const MPI_Comm      comm) const
+    {
+      if (first == std::numeric_limits<std::uint64_t>::max())
+        return;
+      if (first == 0)
+        throw_on_any_rank(pending_message(step), comm);
+      throw_on_any_rank(key == first ? message : std::string(), comm);
+    }
+
+
+    template <int dim>
+    void
+    FiniteCheck::check_state(
+      const Discretization::NodeSet<dim>                        &nodes,
+      const std::vector<std::pair<const double *, std::size_t>> &arrays,
+      const std::function<bool(unsigned int)>                   &finite_at,
+      const std::uint64_t                                        step,
+      const double                                               time,
+      const std::string                                         &quantity,
+      const std::string                                         &advice,
+      const MPI_Comm                                             comm)
+    {
+      std::string         message;
+      const std::uint64_t key = local_state_key(nodes,
+                                                arrays,
+                                                finite_at,
+                                                step,
+                                                time,
+                                                quantity,
+                                                advice,
+                                                message);
+      // MPI_Allreduce with MPI_UINT64_T, not Utilities::MPI::min(): that
+      // one (deal.II 9.4) returned the largest value on 2 processes for a
+      // key of 0 against 2^64 - 1, and a bad input value went unreported.
+      std::uint64_t first = std::numeric_limits<std::uint64_t>::max();
+      const int     ierr =
+        MPI_Allreduce(&key, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
+      AssertThrowMPI(ierr);
+      throw_for_key(key, first, step, message, comm);
+    }
+
+
+    template <int dim>
+    void
+    FiniteCheck::start_state_check(
+      const Discretization::NodeSet<dim>                        &nodes,
+      const std::vector<std::pair<const double *, std::size_t>> &arrays,
+      const std::function<bool(unsigned int)>                   &finite_at,
+      const std::uint64_t                                        step,
+      const double                                               time,
+      const std::string                                         &quantity,
+      const std::string                                         &advice,
+      const MPI_Comm                                             comm)
+    {
+      finish_state_check();
+      in_flight.key   = local_state_key(nodes,
+                                      arrays,
+                                      finite_at,
+                                      step,
+                                      time,
+                                      quantity,
+                                      advice,
+                                      in_flight.message);
+      in_flight.first = std::numeric_limits<std::uint64_t>::max();
+      in_flight.step  = step;
+      in_flight.comm  = comm;
+      const int ierr  = MPI_Iallreduce(&in_flight.key,
+                                      &in_flight.first,
+                                      1,
+                                      MPI_UINT64_T,
+                                      MPI_MIN,
+                                      comm,
+                                      &in_flight.request);
+      AssertThrowMPI(ierr);
+      in_flight.active = true;
+    }
+
+
+    void
+    FiniteCheck::finish_state_check()
+    {
+      if (!in_flight.active)
+        return;
+      const int ierr = MPI_Wait(&in_flight.request, MPI_STATUS_IGNORE);
+      AssertThrowMPI(ierr);
+      in_flight.active = false;
+      throw_for_key(in_flight.key,
+                    in_flight.first,
+                    in_flight.step,
+                    in_flight.message,
+                    in_flight.comm);
     }
 
 
@@ -609,6 +695,15 @@ namespace PeriDEAL
                    FunctionEntry *);
 #define PERIDEAL_INSTANTIATE(dim)                                \
   template void FiniteCheck::check_state(                        \
+    const Discretization::NodeSet<dim> &,                        \
+    const std::vector<std::pair<const double *, std::size_t>> &, \
+    const std::function<bool(unsigned int)> &,                   \
+    const std::uint64_t,                                         \
+    const double,                                                \
+    const std::string &,                                         \
+    const std::string &,                                         \
+    const MPI_Comm);                                             \
+  template void FiniteCheck::start_state_check(                  \
     const Discretization::NodeSet<dim> &,                        \
     const std::vector<std::pair<const double *, std::size_t>> &, \
     const std::function<bool(unsigned int)> &,                   \

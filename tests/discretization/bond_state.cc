@@ -9,7 +9,11 @@
 // process), written here from the definitions: weights from the exact
 // partial volumes, weighted volumes from all bonds, dilatations and forces
 // from intact bonds only, the crack test applied to every pair directly.
-// Kind of test: brute-force reference, 1 and 2 ranks.
+// Kind of test: brute-force reference, 1, 2 and 4 ranks. On 4 ranks a
+// process holds ghosts of several others, and BondState::exchange() sends
+// each pair only to the processes holding one of its owned ends: a pair
+// that reached too few processes leaves a ghost's dilatation (LPS) or a
+// reverse bond wrong, and the forces differ from the brute force.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>

@@ -80,7 +80,7 @@ namespace PeriDEAL
        * Only with @p send does the pair go to the other processes at
        * synchronize(): set it when another process may hold a list for
        * either end (an end that is a ghost here, or an owned node that is a
-       * ghost elsewhere).
+       * ghost elsewhere). Only its owned ends are sent (see exchange()).
        */
       void
       break_pair(const unsigned int i,
@@ -132,6 +132,34 @@ namespace PeriDEAL
       std::size_t
       synchronize();
 
+      /**
+       * synchronize() without the global count: the pairs broken here go
+       * to the neighbouring processes only, point to point (no collective
+       * over all processes), and the return value is this process's share
+       * of the count, the bits newly set at its owned nodes (twice the
+       * pairs once summed over all processes). Collective over the
+       * neighbours: every process calls it the same number of times.
+       *
+       * A pair goes, for each of its ends that this process owns, to the
+       * processes that hold that end as a ghost. A pair with no owned end
+       * here is not sent: the owner of an end finds the same broken bond
+       * from it (the failure test reads both ends' values and is the same
+       * bit for bit from either end), or, for an end that does not test
+       * its bonds (a collocation node), the owner of the other end finds
+       * it and sends it to every process holding that end, which includes
+       * every process holding a list of the first one.
+       */
+      std::size_t
+      exchange();
+
+      /// Wall time spent in exchange() on this process, and the pairs it
+      /// sent (counted once per receiving process), since reinit().
+      std::pair<double, std::size_t>
+      exchange_statistics() const
+      {
+        return {exchange_seconds, sent_pairs};
+      }
+
       /// The local index of the neighbour at the end of bond @p k of @p i.
       unsigned int
       neighbor(const unsigned int i, const unsigned int k) const;
@@ -173,15 +201,40 @@ namespace PeriDEAL
       take_changed_nodes();
 
     private:
-      const NodeSet<dim>                                  *nodes = nullptr;
-      const NeighborList<dim>                             *lists = nullptr;
-      std::vector<std::size_t>                             first;
-      std::vector<std::uint64_t>                           bits;
-      std::vector<unsigned int>                            n_broken_of;
-      std::vector<std::pair<std::uint64_t, std::uint64_t>> pending;
-      std::vector<unsigned int>                            changed;
-      std::vector<bool>                                    is_changed;
-      std::unordered_map<std::uint64_t, unsigned int>      local;
+      const NodeSet<dim>        *nodes = nullptr;
+      const NeighborList<dim>   *lists = nullptr;
+      std::vector<std::size_t>   first;
+      std::vector<std::uint64_t> bits;
+      std::vector<unsigned int>  n_broken_of;
+      /// A pair broken here since the last exchange(): local indices of
+      /// its ends, and whether the bond of j back to i still has to be set.
+      struct PendingPair
+      {
+        unsigned int i, j;
+        bool         reverse;
+      };
+      std::vector<PendingPair>                        pending;
+      std::vector<unsigned int>                       changed;
+      std::vector<bool>                               is_changed;
+      std::unordered_map<std::uint64_t, unsigned int> local;
+
+      /**
+       * The routes of exchange(), built at its first call on more than one
+       * process: the processes that hold owned nodes of this one as ghosts
+       * (send_rank) and, per owned node i, which of them hold it
+       * (send_to[send_first[i], send_first[i + 1]), indices into
+       * send_rank); the processes whose owned nodes are ghosts here
+       * (receive_rank).
+       */
+      bool                      routes_built     = false;
+      double                    exchange_seconds = 0;
+      std::size_t               sent_pairs       = 0;
+      std::vector<int>          send_rank, receive_rank;
+      std::vector<std::size_t>  send_first;
+      std::vector<unsigned int> send_to;
+
+      void
+      build_routes();
 
       /// Bits newly set at owned nodes since the last synchronize().
       std::size_t new_owned_bits = 0;

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/types.h>
 
@@ -12,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace PeriDEAL
@@ -151,6 +153,16 @@ namespace PeriDEAL
        */
       IndexSet
       relevant_dofs() const;
+
+      /**
+       * A partitioner with one entry per node, at global index dofs[0] /
+       * dim (the FE_DGQ(0)^dim numbering: a node's dim DoFs are
+       * consecutive from a multiple of dim): the owned nodes owned, every
+       * other node of the set a ghost. Its import and ghost targets are
+       * the processes this one exchanges node values with. Collective.
+       */
+      std::shared_ptr<const Utilities::MPI::Partitioner>
+      make_node_partitioner() const;
 
       /// The communicator of the mesh.
       MPI_Comm

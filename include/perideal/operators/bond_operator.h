@@ -128,6 +128,18 @@ namespace PeriDEAL
       commit_broken_bonds(Discretization::BondState<dim> &state);
 
       /**
+       * commit_broken_bonds() without a collective over all processes (the
+       * time loops, every step): the broken pairs go to the neighbouring
+       * processes only (BondState::exchange()), and the return value is
+       * this process's share of the count, the bond ends newly broken at
+       * its owned nodes; summed over all processes it is twice the pairs.
+       * With collocation nodes, one reduction still tells every process
+       * whether any of them must switch (make_standard()).
+       */
+      std::size_t
+      commit_broken_bond_ends(Discretization::BondState<dim> &state);
+
+      /**
        * The bonds that apply() found over their critical stretch since
        * set_kinematics() or the last commit, each counted once on all
        * processes together (each end of a bond is owned by one process and
@@ -588,8 +600,12 @@ namespace PeriDEAL
 
       /// 1 for the nodes evaluated by collocation; empty without.
       std::vector<char> collocation_node;
-      std::size_t       missed_switches                  = 0;
-      bool              bond_energy_at_collocation_nodes = false;
+      /// Whether use_collocation() (or its per-node variant) was called:
+      /// the same on every process (collocation_node may be empty on a
+      /// process without nodes).
+      bool        with_collocation                 = false;
+      std::size_t missed_switches                  = 0;
+      bool        bond_energy_at_collocation_nodes = false;
       /// The smallest margin left (margin minus drift) over the remaining
       /// collocation nodes after the last scan, on all processes (infinite:
       /// none left).

@@ -200,6 +200,20 @@ namespace PeriDEAL
       void
       record_energies(Simulator<dim> &simulator);
 
+      /// Add every process's own_work and own_broken_ends to
+      /// external_work and broken_bonds (collective; one reduction).
+      void
+      sum_step_counters(const MPI_Comm comm);
+
+      /**
+       * On more than one process: per step of the loop, the time in the
+       * ghost exchange and in the broken-bond exchange (mean and largest
+       * over the processes), the ghost values a process receives, and the
+       * share of the step (collective).
+       */
+      void
+      print_communication_summary(Simulator<dim> &simulator) const;
+
       /// PVTU of the current state and the PVD series (collective).
       void
       write_output(Simulator<dim> &simulator);
@@ -344,7 +358,16 @@ namespace PeriDEAL
       std::uint64_t elastic_energy_step = no_step;
       std::uint64_t step_number = 0, n_steps = 0;
       double        external_work = 0, load_factor = 0;
-      std::size_t   broken_bonds  = 0;
+      std::size_t   broken_bonds = 0;
+      /// On more than one process: this process's share of the external
+      /// work and of the newly broken bond ends since sum_step_counters()
+      /// last added them to external_work and broken_bonds, so that a step
+      /// needs no reduction for them.
+      double      own_work        = 0;
+      std::size_t own_broken_ends = 0;
+      /// Wall time of this process in the displacement's ghost exchange
+      /// of the time loop (print_communication_summary()).
+      double        ghost_exchange_seconds = 0;
       double        last_progress = 0, next_output_time = 0;
       double        loop_start      = 0;
       std::uint64_t loop_start_step = 0;

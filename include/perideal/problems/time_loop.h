@@ -289,7 +289,72 @@ namespace PeriDEAL
         const std::string                                         &advice,
         const MPI_Comm                                             comm);
 
+      /**
+       * check_state() in two halves, so that a time loop does not wait for
+       * its reduction every step: start_state_check() finishes the check
+       * started before (if any), tests this process's values now and
+       * starts the reduction (MPI_Iallreduce) without waiting for it;
+       * finish_state_check() waits for it and, if a value was not finite
+       * anywhere, throws on every process with check_state()'s message for
+       * the step the check was started at. Call finish_state_check()
+       * before anything is written (energies, output, checkpoints) and at
+       * the end of the loop: a run goes on for at most one step past a
+       * state that is not finite, and writes nothing of it. Both
+       * collective.
+       */
+      template <int dim>
+      void
+      start_state_check(
+        const Discretization::NodeSet<dim>                        &nodes,
+        const std::vector<std::pair<const double *, std::size_t>> &arrays,
+        const std::function<bool(unsigned int)>                   &finite_at,
+        const std::uint64_t                                        step,
+        const double                                               time,
+        const std::string                                         &quantity,
+        const std::string                                         &advice,
+        const MPI_Comm                                             comm);
+
+      /// Complete the check start_state_check() started (nothing if none).
+      void
+      finish_state_check();
+
     private:
+      /**
+       * This process's part of check_state(): 0 for a pending input value
+       * that was not finite, else the lowest DoF + 1 of an owned node with
+       * a value that is not finite (and its message in @p message), else
+       * the largest std::uint64_t.
+       */
+      template <int dim>
+      std::uint64_t
+      local_state_key(
+        const Discretization::NodeSet<dim>                        &nodes,
+        const std::vector<std::pair<const double *, std::size_t>> &arrays,
+        const std::function<bool(unsigned int)>                   &finite_at,
+        const std::uint64_t                                        step,
+        const double                                               time,
+        const std::string                                         &quantity,
+        const std::string                                         &advice,
+        std::string &message) const;
+
+      /// Throw on every process for the reduced key @p first (collective).
+      void
+      throw_for_key(const std::uint64_t key,
+                    const std::uint64_t first,
+                    const std::uint64_t step,
+                    const std::string  &message,
+                    const MPI_Comm      comm) const;
+
+      /// The check start_state_check() started.
+      struct InFlight
+      {
+        bool          active = false;
+        MPI_Request   request;
+        MPI_Comm      comm;
+        std::uint64_t key = 0, first = 0, step = 0;
+        std::string   message;
+      } in_flight;
+
       /// The message for the pending value, in step @p step (0: at set-up).
       std::string
       pending_message(const std::uint64_t step) const;

@@ -15,6 +15,8 @@
 #include <perideal/problems/explicit_dynamics.h>
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -109,11 +111,32 @@ namespace PeriDEAL
               break;
             }
         }
+      finite_check.finish_state_check();
+      sum_step_counters(comm);
       print_hybrid_summary(simulator);
+      print_communication_summary(simulator);
       auto &summary = simulator.get_summary();
       summary.n_bonds =
         Utilities::MPI::sum(simulator.get_neighbor_lists().n_owned_bonds(),
                             simulator.get_communicator());
+    }
+
+
+    template <int dim>
+    void
+    ExplicitDynamics<dim>::sum_step_counters(const MPI_Comm comm)
+    {
+      if (Utilities::MPI::n_mpi_processes(comm) == 1)
+        return;
+      // The ends as a double: exact below 2^53.
+      std::array<double, 2> shares = {{own_work, double(own_broken_ends)}};
+      Utilities::MPI::sum(ArrayView<const double>(shares.data(), 2),
+                          comm,
+                          ArrayView<double>(shares.data(), 2));
+      external_work += shares[0];
+      broken_bonds += static_cast<std::size_t>(shares[1]) / 2;
+      own_work        = 0;
+      own_broken_ends = 0;
     }
 
 
@@ -143,7 +166,14 @@ namespace PeriDEAL
           bond_operator.apply(u, force);
           elastic_energy_step = no_step;
         }
-      broken_bonds += bond_operator.commit_broken_bonds(bond_state);
+      // The count without a reduction (sum_step_counters() adds the
+      // processes' shares when it is read).
+      const std::size_t ends =
+        bond_operator.commit_broken_bond_ends(bond_state);
+      if (Utilities::MPI::n_mpi_processes(simulator.get_communicator()) == 1)
+        broken_bonds += ends / 2;
+      else
+        own_broken_ends += ends;
       update_load(simulator, time);
       load_history->set_time(time);
       load_factor = load_history->value(Point<1>());
@@ -226,7 +256,13 @@ namespace PeriDEAL
       time += dt;
       ++step_number;
       apply_prescribed(simulator, time, dt);
-      u.update_ghost_values();
+      {
+        const auto start = std::chrono::steady_clock::now();
+        u.update_ghost_values();
+        ghost_exchange_seconds += std::chrono::duration<double>(
+                                    std::chrono::steady_clock::now() - start)
+                                    .count();
+      }
       // The energy of this step comes with its forces when run() will
       // record it (the same test as there).
       compute_acceleration(simulator, records_energies());
@@ -251,8 +287,15 @@ namespace PeriDEAL
             0.5 * (old_f[q] + force.local_element(k)) *
               (u.local_element(k) - old_u[q]);
         }
-      external_work += Utilities::MPI::sum(work, simulator.get_communicator());
+      // On one process as before, step by step; else summed when read.
+      if (Utilities::MPI::n_mpi_processes(simulator.get_communicator()) == 1)
+        external_work += work;
+      else
+        own_work += work;
       check_finite(simulator);
+      // The hybrid scheme's scan reads the state: it waits for the check.
+      if (hybrid != nullptr)
+        finite_check.finish_state_check();
       update_hybrid(simulator);
     }
 

@@ -37,10 +37,12 @@ namespace PeriDEAL
       const internal::ExplicitDynamicsCheckpoint::Directories dirs(
         simulator.get_output().directory());
       namespace fs         = std::filesystem;
-      const fs::path &base = dirs.base, &fresh = dirs.fresh,
-                     &good = dirs.good, &old = dirs.old;
-      const MPI_Comm  comm = simulator.get_communicator();
-      const auto      rank = Utilities::MPI::this_mpi_process(comm);
+      const fs::path &base = dirs.base, &fresh = dirs.fresh, &good = dirs.good,
+                     &old = dirs.old;
+      const MPI_Comm comm = simulator.get_communicator();
+      const auto     rank = Utilities::MPI::this_mpi_process(comm);
+      finite_check.finish_state_check();
+      sum_step_counters(comm);
       const auto &keys = checkpoint_keys(simulator);
       {
         std::string error;

@@ -28,8 +28,11 @@ namespace PeriDEAL
     ExplicitDynamics<dim>::record_energies(Simulator<dim> &simulator)
     {
       TimerOutput::Scope scope(simulator.get_timer(), "energies");
-      const MPI_Comm     comm    = simulator.get_communicator();
-      double             kinetic = 0;
+      const MPI_Comm     comm = simulator.get_communicator();
+      // Nothing is recorded of a state that is not finite.
+      finite_check.finish_state_check();
+      sum_step_counters(comm);
+      double kinetic = 0;
       for (unsigned int k = 0; k < u.locally_owned_size(); ++k)
         kinetic +=
           0.5 * mass.local_element(k) * std::pow(v.local_element(k), 2);
@@ -140,6 +143,7 @@ namespace PeriDEAL
     {
       const auto    &nodes = simulator.get_nodes();
       const MPI_Comm comm  = simulator.get_communicator();
+      finite_check.finish_state_check();
       time_loop.advance_output_time(next_output_time, time, dt);
       const auto &output = simulator.get_output();
       if (output.enabled())
@@ -223,10 +227,44 @@ namespace PeriDEAL
 
     template <int dim>
     void
+    ExplicitDynamics<dim>::print_communication_summary(
+      Simulator<dim> &simulator) const
+    {
+      const MPI_Comm      comm    = simulator.get_communicator();
+      const unsigned int  n_procs = Utilities::MPI::n_mpi_processes(comm);
+      const std::uint64_t steps   = step_number - loop_start_step;
+      if (n_procs == 1 || steps == 0)
+        return;
+      const auto [bond_seconds, pairs] = bond_state.exchange_statistics();
+      const double loop                = simulator.elapsed() - loop_start;
+      const auto   ghost =
+        Utilities::MPI::min_max_avg(ghost_exchange_seconds / steps, comm);
+      const auto bond = Utilities::MPI::min_max_avg(bond_seconds / steps, comm);
+      const auto values =
+        Utilities::MPI::min_max_avg(double(
+                                      u.get_partitioner()->n_ghost_indices()),
+                                    comm);
+      const std::size_t all_pairs = Utilities::MPI::sum(pairs, comm);
+      simulator.get_pcout()
+        << "           MPI, per step of " << std::setprecision(3)
+        << 1e3 * loop / steps << " ms: ghost exchange " << 1e3 * ghost.avg
+        << " ms (largest " << 1e3 * ghost.max << "), " << values.avg
+        << " ghost values received per process (largest " << values.max << ", "
+        << 8e-3 * values.max << " kB); broken-bond exchange " << 1e3 * bond.avg
+        << " ms (largest " << 1e3 * bond.max << "), "
+        << double(all_pairs) / steps << " pairs sent" << std::defaultfloat
+        << std::endl;
+    }
+
+
+    template <int dim>
+    void
     ExplicitDynamics<dim>::check_finite(Simulator<dim> &simulator)
     {
       const auto &nodes = simulator.get_nodes();
-      finite_check.check_state(
+      // Started here, finished at the next step's check or before anything
+      // is written (FiniteCheck::start_state_check()).
+      finite_check.start_state_check(
         nodes,
         {{u.begin(), u.locally_owned_size()},
          {v.begin(), v.locally_owned_size()}},
@@ -252,5 +290,8 @@ namespace PeriDEAL
     PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, print_progress_line, )
     PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, write_output, )
     PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void, check_finite, )
+    PERIDEAL_INSTANTIATE_EXPLICIT_DYNAMICS(void,
+                                           print_communication_summary,
+                                           const)
   } // namespace Problems
 } // namespace PeriDEAL

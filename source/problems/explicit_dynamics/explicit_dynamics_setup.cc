@@ -336,6 +336,7 @@ namespace PeriDEAL
       // run() records the energies of the initial state next.
       compute_acceleration(simulator, true);
       check_finite(simulator);
+      finite_check.finish_state_check();
       update_hybrid(simulator);
     }
 
