@@ -129,6 +129,10 @@ namespace PeriDEAL
           }
         exceeded.clear();
       }
+      // Without a critical stretch nothing breaks (with_failure is the
+      // same on every process): no exchange.
+      if (!with_failure)
+        return 0;
       const std::size_t               n_ends  = state.exchange();
       const std::vector<unsigned int> changed = state.take_changed_nodes();
       // Local decisions only, except the one reduction with collocation

@@ -68,7 +68,10 @@ namespace PeriDEAL
       /**
        * Break bond @p k of node @p i here. Call synchronize() on all
        * processes afterwards, so that the reverse bond and every copy of
-       * this one are broken as well.
+       * this one are broken as well. Only pairs with an end owned here are
+       * sent (exchange()): a bond broken at a ghost node only must be
+       * broken by the owner of one of its ends too (every caller decides
+       * from data that is the same on every process holding the bond).
        */
       void
       break_bond(const unsigned int i, const unsigned int k);

@@ -367,10 +367,13 @@ namespace PeriDEAL
       std::size_t own_broken_ends = 0;
       /// Wall time of this process in the displacement's ghost exchange
       /// of the time loop (print_communication_summary()).
-      double        ghost_exchange_seconds = 0;
-      double        last_progress = 0, next_output_time = 0;
-      double        loop_start      = 0;
-      std::uint64_t loop_start_step = 0;
+      double ghost_exchange_seconds = 0;
+      /// BondState::exchange_statistics() when the loop started (the
+      /// set-up's exchanges are not the loop's).
+      std::pair<double, std::size_t> exchange_before_loop{0., 0};
+      double                         last_progress = 0, next_output_time = 0;
+      double                         loop_start      = 0;
+      std::uint64_t                  loop_start_step = 0;
       /// The hybrid scheme's settings (nullptr: another scheme), the
       /// all-standard stability bounds (Gershgorin; the power method only
       /// when choose_time_step() prints its estimate, 0 otherwise), and the

@@ -233,6 +233,15 @@ namespace PeriDEAL
         : unit(unit)
       {}
 
+      /// Completes a reduction still in flight (an exception left the loop
+      /// between start_state_check() and finish_state_check()), so that
+      /// MPI does not write into freed memory; never throws.
+      ~FiniteCheck()
+      {
+        if (in_flight.active)
+          MPI_Wait(&in_flight.request, MPI_STATUS_IGNORE);
+      }
+
       /**
        * Check a value of the function @p entry evaluated at @p x (and, when
        * @p with_time, at the time @p t). Cheap when finite; the step is

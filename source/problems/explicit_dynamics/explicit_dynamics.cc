@@ -61,11 +61,12 @@ namespace PeriDEAL
         }
       TimerOutput::Scope scope(simulator.get_timer(), "time steps");
       integrator.set_time_step(dt);
-      loop_start          = simulator.elapsed();
-      loop_start_step     = step_number;
-      last_progress       = loop_start;
-      last_checkpoint     = loop_start;
-      const MPI_Comm comm = simulator.get_communicator();
+      loop_start           = simulator.elapsed();
+      exchange_before_loop = bond_state.exchange_statistics();
+      loop_start_step      = step_number;
+      last_progress        = loop_start;
+      last_checkpoint      = loop_start;
+      const MPI_Comm comm  = simulator.get_communicator();
       while (step_number < n_steps)
         {
           step(simulator);

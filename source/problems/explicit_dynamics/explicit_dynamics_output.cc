@@ -235,9 +235,11 @@ namespace PeriDEAL
       const std::uint64_t steps   = step_number - loop_start_step;
       if (n_procs == 1 || steps == 0)
         return;
-      const auto [bond_seconds, pairs] = bond_state.exchange_statistics();
-      const double loop                = simulator.elapsed() - loop_start;
-      const auto   ghost =
+      const auto   statistics   = bond_state.exchange_statistics();
+      const double bond_seconds = statistics.first - exchange_before_loop.first;
+      const std::size_t pairs = statistics.second - exchange_before_loop.second;
+      const double      loop  = simulator.elapsed() - loop_start;
+      const auto        ghost =
         Utilities::MPI::min_max_avg(ghost_exchange_seconds / steps, comm);
       const auto bond = Utilities::MPI::min_max_avg(bond_seconds / steps, comm);
       const auto values =
