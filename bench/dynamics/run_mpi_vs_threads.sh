@@ -15,6 +15,7 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/log_fields.sh"
+. "$here/cube_input.sh"
 build=$(cd "${1:-build}" && pwd)
 steps=${2:-200}
 shift 2 || true
@@ -29,28 +30,11 @@ csv="$out/mpi_vs_threads.csv"
 tmp="$csv.tmp"
 echo "model,N,s0,steps,loop_1x2_s,loop_2x1_s,ratio_1x2_over_2x1,broken_1x2,broken_2x1,ghost_exchange_ms,bond_exchange_ms,step_ms_2x1" > "$tmp"
 
-h=1e-3; K=48e9; G=28.8e9; rho=2440; dt=5e-8
-delta=$(awk -v h=$h 'BEGIN { printf "%.10g", 3.0001 * h }')
-make_input() {
-  local model=$1 N=$2 s0=$3 pd_model influence L xc
-  case $model in
-    pmb) pd_model="bond-based"; influence=constant ;;
-    lps) pd_model="linear peridynamic solid"; influence="inverse distance" ;;
-  esac
-  L=$(awk -v N=$N -v h=$h 'BEGIN { printf "%.17g", N * h }')
-  xc=$(awk -v L=$L 'BEGIN { printf "%.17g", L / 2 }')
-  sed -e "s/@N@/$N/g; s/@L@/$L/g; s/@delta@/$delta/g; s/@K@/$K/g; s/@G@/$G/g; s/@rho@/$rho/g; s/@s0@/$s0/g" \
-      -e "s/@model@/$pd_model/g; s/@influence@/$influence/g" \
-      -e "s/@end_time@/$(awk -v n=$steps -v dt=$dt 'BEGIN { printf "%.17g", n * dt }')/; s/@dt@/$dt/; s/@every@/$steps/" \
-      -e "s/@px@/$xc/; s/@py@/$xc/; s/@pz@/$xc/" \
-      -e "s|@vx@|20*(x-$xc)/$L|; s|@vy@|10*(y-$xc)/$L+3*sin(300*x)|; s|@vz@|-10*(z-$xc)/$L|" \
-      "$here/lammps_cube.prm.in" > "$work/cube.prm"
-}
 broken() { sed -n 's/.*broken bonds \([0-9]*\),.*/\1/p' "$1" | tail -1; }
 for N in $sizes; do
   for model in pmb lps; do
     for s0 in 1 5e-4; do
-      make_input $model "$N" $s0
+      cube_input $model "$N" $s0 "$steps" "$steps" > "$work/cube.prm"
       (cd "$work" && "$perideal" --threads 2 cube.prm) > "$work/threads.log" 2>&1 ||
         { tail "$work/threads.log"; exit 1; }
       (cd "$work" && mpirun -np 2 --bind-to none "$perideal" --threads 1 cube.prm) \

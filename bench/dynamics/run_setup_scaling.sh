@@ -16,6 +16,7 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/log_fields.sh"
+. "$here/cube_input.sh"
 build=$(cd "${1:-build}" && pwd)
 threads=${2:-2}
 shift 2 || true
@@ -29,27 +30,14 @@ trap 'rm -rf "$work"' EXIT
 csv="$out/setup_scaling.csv"
 echo "model,N,nodes,bonds,threads,mesh_s,nodes_s,neighbours_s,operator_s,time_step_bound_s,setup_s,steps,seconds_per_step,setup_over_15_steps,peak_memory_mb" > "$csv"
 
-h=1e-3; K=48e9; G=28.8e9; rho=2440; steps=15; dt=5e-8
-delta=$(awk -v h=$h 'BEGIN { printf "%.10g", 3.0001 * h }')
+steps=15
 # The seconds of one TimerOutput section ("| name | calls | 1.23s |").
 section() {
   sed -n "s/^| $2 *| *[0-9]* | *\([0-9.e+-]*\)s.*/\1/p" "$1" | head -1
 }
 run() {
-  local model=$1 N=$2 pd_model influence
-  case $model in
-    pmb) pd_model="bond-based"; influence=constant ;;
-    lps) pd_model="linear peridynamic solid"; influence="inverse distance" ;;
-  esac
-  local L xc
-  L=$(awk -v N=$N -v h=$h 'BEGIN { printf "%.17g", N * h }')
-  xc=$(awk -v L=$L 'BEGIN { printf "%.17g", L / 2 }')
-  sed -e "s/@N@/$N/g; s/@L@/$L/g; s/@delta@/$delta/g; s/@K@/$K/g; s/@G@/$G/g; s/@rho@/$rho/g; s/@s0@/5e-4/g" \
-      -e "s/@model@/$pd_model/g; s/@influence@/$influence/g" \
-      -e "s/@end_time@/$(awk -v n=$steps -v dt=$dt 'BEGIN { printf "%.17g", n * dt }')/; s/@dt@/$dt/; s/@every@/5/" \
-      -e "s/@px@/$xc/; s/@py@/$xc/; s/@pz@/$xc/" \
-      -e "s|@vx@|20*(x-$xc)/$L|; s|@vy@|10*(y-$xc)/$L+3*sin(300*x)|; s|@vz@|-10*(z-$xc)/$L|" \
-      "$here/lammps_cube.prm.in" > "$work/cube.prm"
+  local model=$1 N=$2
+  cube_input $model "$N" 5e-4 $steps 5 > "$work/cube.prm"
   (cd "$work" && "$perideal" --threads "$threads" cube.prm) > "$work/log" 2>&1 ||
     { tail "$work/log"; exit 1; }
   cp "$work/log" "$out/setup_scaling_${model}_$N.log"
