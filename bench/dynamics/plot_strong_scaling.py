@@ -31,6 +31,7 @@ Usage: plot_strong_scaling.py CSV OUT_PREFIX --pmb-node-step S --lps-node-step S
 import argparse
 import csv
 import math
+import os
 
 parser = argparse.ArgumentParser()
 parser.add_argument("csv")
@@ -103,10 +104,12 @@ for two in ("0", "1"):
             "efficiency": ideal / t_step,
             "efficiency_overlapped": ideal / t_overlap})
 
-with open(args.out + ".csv", "w", newline="") as f:
+# Under a temporary name, then renamed: a kill leaves the old file whole.
+with open(args.out + ".csv.tmp", "w", newline="") as f:
     writer = csv.DictWriter(f, fieldnames=list(out_rows[0].keys()))
     writer.writeheader()
     writer.writerows(out_rows)
+os.replace(args.out + ".csv.tmp", args.out + ".csv")
 print("wrote", args.out + ".csv")
 
 import matplotlib
@@ -140,5 +143,6 @@ right.set_ylim(0, 1.05)
 right.set_title(f"alpha = {args.alpha:g} s, {args.bandwidth / 1e9:g} GB/s")
 right.legend(fontsize=8)
 fig.tight_layout()
-fig.savefig(args.out + ".png", dpi=120)
+fig.savefig(args.out + ".tmp.png", dpi=120)
+os.replace(args.out + ".tmp.png", args.out + ".png")
 print("wrote", args.out + ".png")

@@ -442,38 +442,6 @@ namespace PeriDEAL
 
     template <int dim>
     void
-    FiniteCheck::check_state(
-      const Discretization::NodeSet<dim>                        &nodes,
-      const std::vector<std::pair<const double *, std::size_t>> &arrays,
-      const std::function<bool(unsigned int)>                   &finite_at,
-      const std::uint64_t                                        step,
-      const double                                               time,
-      const std::string                                         &quantity,
-      const std::string                                         &advice,
-      const MPI_Comm                                             comm)
-    {
-      std::string         message;
-      const std::uint64_t key = local_state_key(nodes,
-                                                arrays,
-                                                finite_at,
-                                                step,
-                                                time,
-                                                quantity,
-                                                advice,
-                                                message);
-      // MPI_Allreduce with MPI_UINT64_T, not Utilities::MPI::min(): that
-      // one (deal.II 9.4) returned the largest value on 2 processes for a
-      // key of 0 against 2^64 - 1, and a bad input value went unreported.
-      std::uint64_t first = std::numeric_limits<std::uint64_t>::max();
-      const int     ierr =
-        MPI_Allreduce(&key, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
-      AssertThrowMPI(ierr);
-      throw_for_key(key, first, step, message, comm);
-    }
-
-
-    template <int dim>
-    void
     FiniteCheck::start_state_check(
       const Discretization::NodeSet<dim>                        &nodes,
       const std::vector<std::pair<const double *, std::size_t>> &arrays,
@@ -485,7 +453,7 @@ namespace PeriDEAL
       const MPI_Comm                                             comm)
     {
       finish_state_check();
-      in_flight.key   = local_state_key(nodes,
+      in_flight.key = local_state_key(nodes,
                                       arrays,
                                       finite_at,
                                       step,
@@ -493,6 +461,9 @@ namespace PeriDEAL
                                       quantity,
                                       advice,
                                       in_flight.message);
+      // MPI_UINT64_T, not Utilities::MPI::min(): that one (deal.II 9.4)
+      // returned the largest value on 2 processes for a key of 0 against
+      // 2^64 - 1, and a bad input value went unreported.
       in_flight.first = std::numeric_limits<std::uint64_t>::max();
       in_flight.step  = step;
       in_flight.comm  = comm;
@@ -694,15 +665,6 @@ namespace PeriDEAL
                    const unsigned int,
                    FunctionEntry *);
 #define PERIDEAL_INSTANTIATE(dim)                                \
-  template void FiniteCheck::check_state(                        \
-    const Discretization::NodeSet<dim> &,                        \
-    const std::vector<std::pair<const double *, std::size_t>> &, \
-    const std::function<bool(unsigned int)> &,                   \
-    const std::uint64_t,                                         \
-    const double,                                                \
-    const std::string &,                                         \
-    const std::string &,                                         \
-    const MPI_Comm);                                             \
   template void FiniteCheck::start_state_check(                  \
     const Discretization::NodeSet<dim> &,                        \
     const std::vector<std::pair<const double *, std::size_t>> &, \

@@ -296,7 +296,18 @@ namespace PeriDEAL
         const double                                               time,
         const std::string                                         &quantity,
         const std::string                                         &advice,
-        const MPI_Comm                                             comm);
+        const MPI_Comm                                             comm)
+      {
+        start_state_check(nodes,
+                          arrays,
+                          finite_at,
+                          step,
+                          time,
+                          quantity,
+                          advice,
+                          comm);
+        finish_state_check();
+      }
 
       /**
        * check_state() in two halves, so that a time loop does not wait for
