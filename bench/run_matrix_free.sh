@@ -28,7 +28,15 @@ else
   sizes="5:2 5:3 15:2 5:4 25:2"; ms="2 3 4 5"; threads=2
 fi
 run_case() { # S R m preconditioner summary [coarsening]
-  sed -e "s/@S@/$1/g; s/@R@/$2/; s/@N@/$(( $1 * (1 << $2) ))/; s/@P@/$4/; s|@SUMMARY@|$5|; s/@C@/${6:-1}/; s/@W@/$( [ "${6:-1}" = 2 ] && echo 0.8 || echo 0.3 )/" \
+  # local elasticity: its matrix on every coarsening-th node; the Jacobi
+  # weight that serves each best (the doc's iterations against it).
+  local local_settings=""
+  if [ "$4" = "local elasticity" ]; then
+    local c="${6:-1}" w=0.3
+    [ "$c" = 2 ] && w=0.8
+    local_settings="  subsection local elasticity\\n    set Coarsening       = $c\\n    set PD Jacobi weight = $w\\n  end"
+  fi
+  sed -e "s/@S@/$1/g; s/@R@/$2/; s/@N@/$(( $1 * (1 << $2) ))/; s/@P@/$4/; s|@SUMMARY@|$5|; s/^@LOCAL_ELASTICITY@$/$local_settings/; s/(@LOCAL_ELASTICITY@:/(local elasticity:/" \
       "$here/matrix_free/lps_3d_quadratic.prm.in" \
     | sed -e "s/set m-ratio = 3/set m-ratio = $3/" > case.prm
   "$perideal" --threads "$threads" case.prm > case.log 2>&1 \

@@ -19,6 +19,26 @@ namespace PeriDEAL
   {
     namespace
     {
+      /// Calls f(i, p, k) for component p of each owned node i whose DoF
+      /// is free, k the DoF's local index in @p fine.
+      template <int dim, typename VectorType, typename Function>
+      void
+      for_each_free_dof(const VectorType                           &fine,
+                        const std::vector<types::global_dof_index> &fine_dof,
+                        const std::vector<char> &fine_constrained,
+                        const Function          &f)
+      {
+        const auto &partitioner = *fine.get_partitioner();
+        for (unsigned int i = 0; i < fine_dof.size(); ++i)
+          {
+            const unsigned int local = partitioner.global_to_local(fine_dof[i]);
+            for (unsigned int p = 0; p < dim; ++p)
+              if (!fine_constrained[std::size_t(i) * dim + p])
+                f(i, p, local + p);
+          }
+      }
+
+
       /// x mod s in [0, s) for negative x too.
       std::int64_t
       remainder(const std::int64_t x, const std::int64_t s)
@@ -255,26 +275,20 @@ namespace PeriDEAL
     CoarseLattice<dim>::restrict_residual(VectorType       &coarse,
                                           const VectorType &fine) const
     {
-      coarse                              = 0;
-      const auto        &fine_partitioner = *fine.get_partitioner();
-      const unsigned int n_owned          = fine_dof.size();
-      for (unsigned int i = 0; i < n_owned; ++i)
-        {
-          const unsigned int local =
-            fine_partitioner.global_to_local(fine_dof[i]);
-          for (unsigned int p = 0; p < dim; ++p)
+      coarse = 0;
+      for_each_free_dof<dim>(
+        fine,
+        fine_dof,
+        fine_constrained,
+        [&](const unsigned int i, const unsigned int p, const unsigned int k) {
+          const double v = fine.local_element(k);
+          for (unsigned int e = row_start[i]; e < row_start[i + 1]; ++e)
             {
-              if (fine_constrained[std::size_t(i) * dim + p])
-                continue;
-              const double v = fine.local_element(local + p);
-              for (unsigned int k = row_start[i]; k < row_start[i + 1]; ++k)
-                {
-                  const unsigned int c = corner_local[k] + p;
-                  if (!coarse_constrained[c])
-                    coarse.local_element(c) += corner_weight[k] * v;
-                }
+              const unsigned int c = corner_local[e] + p;
+              if (!coarse_constrained[c])
+                coarse.local_element(c) += corner_weight[e] * v;
             }
-        }
+        });
       coarse.compress(VectorOperation::add);
     }
 
@@ -285,26 +299,20 @@ namespace PeriDEAL
                                        const VectorType &coarse) const
     {
       coarse.update_ghost_values();
-      const auto        &fine_partitioner = *fine.get_partitioner();
-      const unsigned int n_owned          = fine_dof.size();
-      for (unsigned int i = 0; i < n_owned; ++i)
-        {
-          const unsigned int local =
-            fine_partitioner.global_to_local(fine_dof[i]);
-          for (unsigned int p = 0; p < dim; ++p)
+      for_each_free_dof<dim>(
+        fine,
+        fine_dof,
+        fine_constrained,
+        [&](const unsigned int i, const unsigned int p, const unsigned int k) {
+          double v = 0;
+          for (unsigned int e = row_start[i]; e < row_start[i + 1]; ++e)
             {
-              if (fine_constrained[std::size_t(i) * dim + p])
-                continue;
-              double v = 0;
-              for (unsigned int k = row_start[i]; k < row_start[i + 1]; ++k)
-                {
-                  const unsigned int c = corner_local[k] + p;
-                  if (!coarse_constrained[c])
-                    v += corner_weight[k] * coarse.local_element(c);
-                }
-              fine.local_element(local + p) += v;
+              const unsigned int c = corner_local[e] + p;
+              if (!coarse_constrained[c])
+                v += corner_weight[e] * coarse.local_element(c);
             }
-        }
+          fine.local_element(k) += v;
+        });
       coarse.zero_out_ghost_values();
     }
 
