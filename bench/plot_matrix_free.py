@@ -22,9 +22,14 @@ def read(name):
         return list(csv.DictReader(f))
 
 
+# The preconditioners as the summary names them, and their markers.
+PRECONDITIONERS = (("local elasticity", "o"),
+                   ("local elasticity (coarsening 2)", "^"),
+                   ("Jacobi", "s"))
+
 rows = read("scaling.csv")
 fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-for prec, marker in (("local elasticity", "o"), ("Jacobi", "s")):
+for prec, marker in PRECONDITIONERS:
     r = [x for x in rows if x["preconditioner"] == prec]
     n = [int(x["n_nodes"]) for x in r]
     axes[0].loglog(n, [float(x["time_total"]) for x in r], marker, ls="-",
@@ -46,7 +51,7 @@ fig.tight_layout()
 fig.savefig("scaling.png", dpi=120)
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
-for prec, marker in (("local elasticity", "o"), ("Jacobi", "s")):
+for prec, marker in PRECONDITIONERS:
     r = [x for x in rows if x["preconditioner"] == prec]
     ax.loglog([float(x["time_total"]) for x in r],
               [float(x["l2_error"]) for x in r], marker, ls="-", label=prec)
@@ -59,7 +64,7 @@ fig.savefig("error_vs_time.png", dpi=120)
 
 rows = read("m_sweep.csv")
 fig, ax = plt.subplots(figsize=(6, 4.5))
-for prec, marker in (("local elasticity", "o"), ("Jacobi", "s")):
+for prec, marker in PRECONDITIONERS:
     r = [x for x in rows if x["preconditioner"] == prec]
     ax.plot([float(x["m_ratio"]) for x in r], [int(x["iterations"]) for x in r],
             marker, ls="-", label=prec)

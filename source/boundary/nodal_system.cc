@@ -234,18 +234,41 @@ namespace PeriDEAL
         }
       preconditioner_ready = true;
       cut_cubes_built      = n_cut;
-      Operators::LocalElasticityOperator<dim>::assemble(context.nodes,
-                                                        lattice,
-                                                        context.model,
-                                                        constraints,
-                                                        local_matrix,
-                                                        fracture ?
-                                                          &broken_masks :
-                                                          nullptr);
+      // On a coarser lattice ('local elasticity/Coarsening'): its own
+      // DoFs, reached through the interpolation.
+      const unsigned int coarsening =
+        context.linear_solver.preconditioner().local_matrix_coarsening();
+      AssertThrow(coarsening == 1 || !fracture,
+                  ExcInvalidInput(
+                    "Linear solver/local elasticity/Coarsening",
+                    std::to_string(coarsening),
+                    "the coarse grid does not yet follow the cracks (its "
+                    "cubes are not cut where bonds break), so it is refused "
+                    "with a critical stretch: set it to 1"));
+      local_transfer = nullptr;
+      if (coarsening > 1)
+        {
+          coarse_lattice.reinit(context.nodes,
+                                lattice,
+                                constraints,
+                                coarsening);
+          local_transfer = &coarse_lattice;
+        }
+      Operators::LocalElasticityOperator<dim>::assemble(
+        context.nodes,
+        lattice,
+        context.model,
+        constraints,
+        local_matrix,
+        fracture ? &broken_masks : nullptr,
+        coarsening > 1 ? &coarse_lattice : nullptr);
       constant_modes.clear();
-      DoFTools::extract_constant_modes(context.dof_handler,
-                                       ComponentMask(dim, true),
-                                       constant_modes);
+      if (coarsening > 1)
+        constant_modes = coarse_lattice.constant_modes();
+      else
+        DoFTools::extract_constant_modes(context.dof_handler,
+                                         ComponentMask(dim, true),
+                                         constant_modes);
     }
 
 
@@ -278,7 +301,8 @@ namespace PeriDEAL
                                                solution,
                                                step_rhs,
                                                &local_matrix,
-                                               constant_modes);
+                                               constant_modes,
+                                               local_transfer);
       }
       free_solution = solution;
       solution += step_prescribed;

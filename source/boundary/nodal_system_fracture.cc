@@ -192,7 +192,8 @@ namespace PeriDEAL
                                                           dx,
                                                           r,
                                                           &local_matrix,
-                                                          constant_modes);
+                                                          constant_modes,
+                                                          local_transfer);
           report.iterations += linear.iterations;
           report.method = linear.method;
           x += dx;

@@ -180,25 +180,45 @@ namespace PeriDEAL
       const Models::Model<dim>           &model,
       const AffineConstraints<double>    &constraints,
       TrilinosWrappers::SparseMatrix     &matrix,
-      const std::vector<std::uint32_t>   *broken_masks)
+      const std::vector<std::uint32_t>   *broken_masks,
+      const CoarseLattice<dim>           *coarse)
     {
+      AssertThrow(coarse == nullptr || broken_masks == nullptr,
+                  ExcInternalError());
       AssertThrow(lattice.is_uniform(),
                   ExcMessage("The local elasticity preconditioner needs a "
                              "uniform grid of cubes (the cell centres must "
                              "form a lattice)."));
       constexpr unsigned int n_vertices = 1u << dim;
-      const double           h          = lattice.spacing();
-      const double           mu         = model.shear_modulus();
-      double                 lambda     = model.bulk_modulus() - 2. / 3. * mu;
+      // On a coarse lattice: cubes of s lattice steps, its own DoFs.
+      const unsigned int s      = coarse != nullptr ? coarse->stride() : 1;
+      const double       h      = s * lattice.spacing();
+      const double       mu     = model.shear_modulus();
+      double             lambda = model.bulk_modulus() - 2. / 3. * mu;
       if (dim == 2 && model.plane_stress())
         lambda = 2 * lambda * mu / (lambda + 2 * mu);
       const FullMatrix<double> k = element_matrix(h, lambda, mu);
 
+      const auto is_row = [&](const unsigned int i) {
+        return coarse == nullptr || coarse->is_coarse(i);
+      };
+      const auto dof_of = [&](const unsigned int i, const unsigned int p) {
+        return coarse != nullptr ? coarse->dof(i, p) : nodes[i].dofs[p];
+      };
+      // Prescribed: the PD DoF of the same node and component.
+      const auto prescribed = [&](const unsigned int i, const unsigned int p) {
+        return constraints.is_constrained(nodes[i].dofs[p]);
+      };
       IndexSet owned(nodes.relevant_dofs().size());
-      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
-        for (const auto dof : nodes[i].dofs)
-          owned.add_index(dof);
-      owned.compress();
+      if (coarse != nullptr)
+        owned = coarse->owned_dofs();
+      else
+        {
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            for (const auto dof : nodes[i].dofs)
+              owned.add_index(dof);
+          owned.compress();
+        }
 
       // The dual cubes that contain node i: i is vertex a of the cube with
       // lower corner x_i - a. Calls f(a, corner nodes) for each complete
@@ -213,7 +233,8 @@ namespace PeriDEAL
               {
                 std::array<std::int64_t, dim> y = x;
                 for (unsigned int d = 0; d < dim; ++d)
-                  y[d] += int((b >> d) & 1) - int((a >> d) & 1);
+                  y[d] +=
+                    std::int64_t(s) * (int((b >> d) & 1) - int((a >> d) & 1));
                 corner[b] = lattice.node_at(y);
                 complete  = corner[b] >= 0;
               }
@@ -265,17 +286,19 @@ namespace PeriDEAL
       std::vector<types::global_dof_index> columns;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
+          if (!is_row(i))
+            continue;
           collect_cubes(i);
           for (unsigned int p = 0; p < dim; ++p)
             {
-              const auto row = nodes[i].dofs[p];
+              const auto row = dof_of(i, p);
               columns.assign(1, row);
-              if (!constraints.is_constrained(row))
+              if (!prescribed(i, p))
                 for (const auto &cube : cubes)
                   for (const int j : cube.corner)
                     for (unsigned int r = 0; r < dim; ++r)
-                      if (!constraints.is_constrained(nodes[j].dofs[r]))
-                        columns.push_back(nodes[j].dofs[r]);
+                      if (!prescribed(j, r))
+                        columns.push_back(dof_of(j, r));
               std::sort(columns.begin(), columns.end());
               columns.erase(std::unique(columns.begin(), columns.end()),
                             columns.end());
@@ -296,23 +319,25 @@ namespace PeriDEAL
       std::vector<double>                                 row_values;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
+          if (!is_row(i))
+            continue;
           collect_cubes(i);
           for (unsigned int p = 0; p < dim; ++p)
             {
-              const auto row      = nodes[i].dofs[p];
+              const auto row      = dof_of(i, p);
               double     diagonal = 0;
               used.fill(false);
               for (const auto &cube : cubes)
                 {
                   const unsigned int a = cube.vertex;
                   diagonal += cube.factor * k(a * dim + p, a * dim + p);
-                  if (constraints.is_constrained(row))
+                  if (prescribed(i, p))
                     continue;
                   for (unsigned int b = 0; b < n_vertices; ++b)
                     for (unsigned int r = 0; r < dim; ++r)
                       {
-                        const auto col = nodes[cube.corner[b]].dofs[r];
-                        if (col == row || constraints.is_constrained(col))
+                        const auto col = dof_of(cube.corner[b], r);
+                        if (col == row || prescribed(cube.corner[b], r))
                           continue;
                         const unsigned int q = place(a, b, r);
                         if (!used[q])

@@ -385,6 +385,10 @@ namespace PeriDEAL
       summary.operator_type =
         linear_solver.is_matrix_free() ? "matrix-free" : "assembled";
       summary.preconditioner = linear_solver.preconditioner_name();
+      if (const unsigned int c =
+            linear_solver.preconditioner().local_matrix_coarsening();
+          c > 1)
+        summary.preconditioner += " (coarsening " + std::to_string(c) + ")";
 
       const bool scheme_supported =
         quadrature_scheme->hybrid() != nullptr ?

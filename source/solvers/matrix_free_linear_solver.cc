@@ -96,17 +96,22 @@ namespace PeriDEAL
 
     template <int dim>
     SolverReport
-    LinearSolver::solve(
-      const Operators::ConstrainedOperator<dim> &op,
-      VectorType                                &solution,
-      const VectorType                          &rhs,
-      const TrilinosWrappers::SparseMatrix      *local_matrix,
-      const std::vector<std::vector<bool>>      &constant_modes) const
+    LinearSolver::solve(const Operators::ConstrainedOperator<dim> &op,
+                        VectorType                                &solution,
+                        const VectorType                          &rhs,
+                        const TrilinosWrappers::SparseMatrix      *local_matrix,
+                        const std::vector<std::vector<bool>> &constant_modes,
+                        const Operators::GridTransfer *local_transfer) const
     {
-      Timer        timer;
-      SolverReport report;
-      report.method = method_name() + " + " + preconditioner_selected +
-                      " (matrix-free operator)";
+      Timer              timer;
+      SolverReport       report;
+      const unsigned int coarsening =
+        preconditioner_object->local_matrix_coarsening();
+      report.method =
+        method_name() + " + " + preconditioner_selected +
+        (coarsening > 1 ? " (coarsening " + std::to_string(coarsening) + ")" :
+                          "") +
+        " (matrix-free operator)";
       const double rhs_norm = rhs.l2_norm();
       internal::check_finite_rhs(rhs_norm, report.method);
       if (rhs_norm == 0)
@@ -143,6 +148,7 @@ namespace PeriDEAL
       setup.n_rows         = op.m();
       setup.local_matrix   = local_matrix;
       setup.constant_modes = constant_modes;
+      setup.local_transfer = local_transfer;
       AssertThrow(!preconditioner_object->needs_local_matrix() ||
                     local_matrix != nullptr,
                   ExcInternalError());
@@ -268,7 +274,8 @@ namespace PeriDEAL
     VectorType &,                                 \
     const VectorType &,                           \
     const TrilinosWrappers::SparseMatrix *,       \
-    const std::vector<std::vector<bool>> &) const;
+    const std::vector<std::vector<bool>> &,       \
+    const Operators::GridTransfer *) const;
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)
 #undef PERIDEAL_INSTANTIATE

@@ -46,6 +46,13 @@ namespace PeriDEAL
     }
 
 
+    unsigned int
+    Preconditioner::local_matrix_coarsening() const
+    {
+      return 1;
+    }
+
+
     bool
     Preconditioner::is_identity() const
     {

@@ -176,6 +176,11 @@ namespace PeriDEAL
       VectorType                     step_rhs, step_prescribed, free_solution;
       bool                           preconditioner_ready = false;
       std::vector<std::vector<bool>> constant_modes;
+      /// Where the local matrix lives on a coarser lattice
+      /// ('local elasticity/Coarsening'): that lattice, and the transfer
+      /// handed to the solver (null otherwise).
+      Operators::CoarseLattice<dim>  coarse_lattice;
+      const Operators::GridTransfer *local_transfer = nullptr;
       /// The preconditioner's dual grid where the nodes are perturbed in
       /// their cells (empty on a uniform grid, which has its own).
       Discretization::Lattice<dim> preconditioner_cells;

@@ -11,6 +11,7 @@
 #include <perideal/discretization/neighbor_list.h>
 #include <perideal/discretization/node_set.h>
 #include <perideal/models/model.h>
+#include <perideal/operators/coarse_lattice.h>
 
 #include <cstdint>
 #include <vector>
@@ -49,7 +50,10 @@ namespace PeriDEAL
       /**
        * Assemble into @p matrix (rows: the owned DoFs of @p nodes). The
        * lattice must be uniform and the node set must hold the off-process
-       * nodes next to owned ones.
+       * nodes next to owned ones. With @p coarse, on its coarse nodes
+       * instead: dual cubes of side s h between them, rows and columns its
+       * DoFs, a coarse DoF prescribed where the PD DoF of its node is (not
+       * with @p broken_masks).
        */
       static void
       assemble(const Discretization::NodeSet<dim> &nodes,
@@ -57,7 +61,8 @@ namespace PeriDEAL
                const Models::Model<dim>           &model,
                const AffineConstraints<double>    &constraints,
                TrilinosWrappers::SparseMatrix     &matrix,
-               const std::vector<std::uint32_t>   *broken_masks = nullptr);
+               const std::vector<std::uint32_t>   *broken_masks = nullptr,
+               const CoarseLattice<dim>           *coarse       = nullptr);
 
       /**
        * The broken bonds between lattice neighbours, for assemble() to cut

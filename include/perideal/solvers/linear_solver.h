@@ -73,7 +73,9 @@ namespace PeriDEAL
        * and @p local_matrix, the local elasticity operator on the same nodes
        * (Operators::LocalElasticityOperator), where the preconditioner
        * needs_local_matrix() (may be null otherwise). @p constant_modes as
-       * for the assembled solve.
+       * for the assembled solve (of the local matrix). @p local_transfer:
+       * where the local matrix lives on a coarser lattice
+       * (Preconditioner::local_matrix_coarsening() > 1), the transfer to it.
        */
       template <int dim>
       SolverReport
@@ -81,7 +83,8 @@ namespace PeriDEAL
             LinearAlgebra::distributed::Vector<double>       &solution,
             const LinearAlgebra::distributed::Vector<double> &rhs,
             const TrilinosWrappers::SparseMatrix             *local_matrix,
-            const std::vector<std::vector<bool>> &constant_modes) const;
+            const std::vector<std::vector<bool>>             &constant_modes,
+            const Operators::GridTransfer *local_transfer = nullptr) const;
 
       /// A linear map between Trilinos vectors: dst = A src.
       using TrilinosMap =

@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <perideal/base/plugin_registry.h>
+#include <perideal/operators/coarse_lattice.h>
 #include <perideal/solvers/amg.h>
 
 #include <functional>
@@ -59,6 +60,11 @@ namespace PeriDEAL
       /// same nodes, with the same Dirichlet constraints
       /// (Operators::LocalElasticityOperator).
       const TrilinosWrappers::SparseMatrix *local_matrix = nullptr;
+
+      /// Where local_matrix_coarsening() > 1: the transfer between the PD
+      /// DoFs and the rows of local_matrix, which then lives on a coarser
+      /// grid (Operators::CoarseLattice).
+      const Operators::GridTransfer *local_transfer = nullptr;
 
       /// OperatorForm::matrix_free: the inverse of the operator's diagonal
       /// (every entry positive; the solver refuses zero rows before).
@@ -117,6 +123,12 @@ namespace PeriDEAL
       /// caller then assembles the local elasticity operator.
       virtual bool
       needs_local_matrix() const;
+
+      /// Where needs_local_matrix(): the stride of the lattice the local
+      /// matrix is wanted on (1: the nodes themselves; 2: every second node
+      /// in each direction, with PreconditionerSetup::local_transfer).
+      virtual unsigned int
+      local_matrix_coarsening() const;
 
       /// Whether this is the identity: the Krylov methods then take their
       /// unpreconditioned form (deal.II's CG reuses |r| instead of forming
