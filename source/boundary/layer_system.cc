@@ -385,7 +385,8 @@ namespace PeriDEAL
                                                             layers,
                                                             local_matrix);
           Solvers::PreconditionerSetup setup;
-          setup.local_matrix = &local_matrix;
+          setup.local_matrix         = &local_matrix;
+          setup.local_matrix_version = Solvers::new_local_matrix_version();
           DoFTools::extract_constant_modes(context.dof_handler,
                                            ComponentMask(dim, true),
                                            setup.constant_modes);

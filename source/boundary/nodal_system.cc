@@ -216,15 +216,12 @@ namespace PeriDEAL
       std::size_t                n_cut = 0;
       if (fracture)
         {
-          VectorType exchanged;
-          bond_operator.initialize_dof_vector(exchanged);
           broken_masks =
             Operators::LocalElasticityOperator<dim>::broken_neighbor_masks(
               context.nodes,
               lattice,
               context.neighbor_lists,
-              bond_state,
-              exchanged);
+              bond_state);
           n_cut =
             Operators::LocalElasticityOperator<dim>::n_cut_cubes(context.nodes,
                                                                  lattice,
@@ -238,13 +235,6 @@ namespace PeriDEAL
       // DoFs, reached through the interpolation.
       const unsigned int coarsening =
         context.linear_solver.preconditioner().local_matrix_coarsening();
-      AssertThrow(coarsening == 1 || !fracture,
-                  ExcInvalidInput(
-                    "Linear solver/local elasticity/Coarsening",
-                    std::to_string(coarsening),
-                    "the coarse grid does not yet follow the cracks (its "
-                    "cubes are not cut where bonds break), so it is refused "
-                    "with a critical stretch: set it to 1"));
       local_transfer = nullptr;
       if (coarsening > 1)
         {
@@ -262,6 +252,7 @@ namespace PeriDEAL
         local_matrix,
         fracture ? &broken_masks : nullptr,
         coarsening > 1 ? &coarse_lattice : nullptr);
+      local_matrix_version = Solvers::new_local_matrix_version();
       constant_modes.clear();
       if (coarsening > 1)
         constant_modes = coarse_lattice.constant_modes();
@@ -302,7 +293,8 @@ namespace PeriDEAL
                                                step_rhs,
                                                &local_matrix,
                                                constant_modes,
-                                               local_transfer);
+                                               local_transfer,
+                                               local_matrix_version);
       }
       free_solution = solution;
       solution += step_prescribed;

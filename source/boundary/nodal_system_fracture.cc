@@ -193,7 +193,8 @@ namespace PeriDEAL
                                                           r,
                                                           &local_matrix,
                                                           constant_modes,
-                                                          local_transfer);
+                                                          local_transfer,
+                                                          local_matrix_version);
           report.iterations += linear.iterations;
           report.method = linear.method;
           x += dx;

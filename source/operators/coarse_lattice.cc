@@ -106,7 +106,7 @@ namespace PeriDEAL
             const bool coarse = is_on_coarse_lattice(i);
             if (coarse)
               coarse_number[i] = next++;
-            numbers_of_nodes.local_element(i) =
+            numbers_of_nodes(nodes[i].dofs[0] / dim) =
               coarse ? double(coarse_number[i]) : -1.;
           }
         numbers_of_nodes.update_ghost_values();

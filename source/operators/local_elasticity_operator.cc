@@ -128,17 +128,17 @@ namespace PeriDEAL
     template <int dim>
     std::vector<std::uint32_t>
     LocalElasticityOperator<dim>::broken_neighbor_masks(
-      const Discretization::NodeSet<dim>         &nodes,
-      const Discretization::Lattice<dim>         &lattice,
-      const Discretization::NeighborList<dim>    &lists,
-      const Discretization::BondState<dim>       &bonds,
-      LinearAlgebra::distributed::Vector<double> &exchanged)
+      const Discretization::NodeSet<dim>      &nodes,
+      const Discretization::Lattice<dim>      &lattice,
+      const Discretization::NeighborList<dim> &lists,
+      const Discretization::BondState<dim>    &bonds)
     {
-      // The owners' masks, sent to the off-process copies through the
-      // first DoF of each node (the bonds are broken in both directions
+      // The owners' masks, sent to every off-process copy through a vector
+      // with one entry per node (the bonds are broken in both directions
       // after BondState::synchronize(), so either end's mask would do; the
       // owner's is the one every process has).
-      exchanged = 0;
+      LinearAlgebra::distributed::Vector<double> exchanged(
+        nodes.make_node_partitioner());
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
           if (!bonds.any_broken(i))
@@ -155,19 +155,13 @@ namespace PeriDEAL
                 if (bit >= 0)
                   mask |= std::uint32_t(1) << bit;
               }
-          exchanged[nodes[i].dofs[0]] = mask;
+          exchanged(nodes[i].dofs[0] / dim) = mask;
         }
       exchanged.update_ghost_values();
-      const auto                &partitioner = *exchanged.get_partitioner();
       std::vector<std::uint32_t> masks(nodes.size(), 0);
       for (unsigned int i = 0; i < nodes.size(); ++i)
-        {
-          const auto dof = nodes[i].dofs[0];
-          if (partitioner.in_local_range(dof) ||
-              partitioner.is_ghost_entry(dof))
-            masks[i] = static_cast<std::uint32_t>(exchanged(dof));
-        }
-      exchanged.zero_out_ghost_values();
+        masks[i] =
+          static_cast<std::uint32_t>(exchanged(nodes[i].dofs[0] / dim));
       return masks;
     }
 
@@ -183,8 +177,6 @@ namespace PeriDEAL
       const std::vector<std::uint32_t>   *broken_masks,
       const CoarseLattice<dim>           *coarse)
     {
-      AssertThrow(coarse == nullptr || broken_masks == nullptr,
-                  ExcInternalError());
       AssertThrow(lattice.is_uniform(),
                   ExcMessage("The local elasticity preconditioner needs a "
                              "uniform grid of cubes (the cell centres must "
@@ -246,11 +238,32 @@ namespace PeriDEAL
       // A dual cube is cut when a bond between two of its corners is
       // broken: its stiffness is scaled by cut_cube_factor, so that the
       // preconditioner's elasticity has the cracks the PD bonds have.
+      // A coarse cube (s = 2) is cut when one of the 2^dim cubes of side
+      // h it holds is: its nodes lie within two lattice steps of the
+      // coarse node whose row is assembled, all in the node set.
+      const auto is_cut = [&](const auto &corner) {
+        if (s == 1)
+          return cube_is_cut<dim>(corner, *broken_masks);
+        const auto &lower = lattice.coordinates(corner[0]);
+        for (unsigned int sub = 0; sub < n_vertices; ++sub)
+          {
+            std::array<int, n_vertices> fine_corner;
+            bool                        complete = true;
+            for (unsigned int b = 0; b < n_vertices && complete; ++b)
+              {
+                std::array<std::int64_t, dim> y = lower;
+                for (unsigned int d = 0; d < dim; ++d)
+                  y[d] += int((sub >> d) & 1) + int((b >> d) & 1);
+                fine_corner[b] = lattice.node_at(y);
+                complete       = fine_corner[b] >= 0;
+              }
+            if (complete && cube_is_cut<dim>(fine_corner, *broken_masks))
+              return true;
+          }
+        return false;
+      };
       const auto cube_factor = [&](const auto &corner) {
-        return broken_masks != nullptr &&
-                   cube_is_cut<dim>(corner, *broken_masks) ?
-                 cut_cube_factor :
-                 1.;
+        return broken_masks != nullptr && is_cut(corner) ? cut_cube_factor : 1.;
       };
 
       // Each node's dual cubes, found once per node (lattice look-ups),

@@ -101,7 +101,8 @@ namespace PeriDEAL
                         const VectorType                          &rhs,
                         const TrilinosWrappers::SparseMatrix      *local_matrix,
                         const std::vector<std::vector<bool>> &constant_modes,
-                        const Operators::GridTransfer *local_transfer) const
+                        const Operators::GridTransfer        *local_transfer,
+                        const std::uint64_t local_matrix_version) const
     {
       Timer              timer;
       SolverReport       report;
@@ -145,10 +146,11 @@ namespace PeriDEAL
       setup.apply            = [&op](VectorType &dst, const VectorType &src) {
         op.vmult(dst, src);
       };
-      setup.n_rows         = op.m();
-      setup.local_matrix   = local_matrix;
-      setup.constant_modes = constant_modes;
-      setup.local_transfer = local_transfer;
+      setup.n_rows               = op.m();
+      setup.local_matrix         = local_matrix;
+      setup.constant_modes       = constant_modes;
+      setup.local_transfer       = local_transfer;
+      setup.local_matrix_version = local_matrix_version;
       AssertThrow(!preconditioner_object->needs_local_matrix() ||
                     local_matrix != nullptr,
                   ExcInternalError());
@@ -275,7 +277,8 @@ namespace PeriDEAL
     const VectorType &,                           \
     const TrilinosWrappers::SparseMatrix *,       \
     const std::vector<std::vector<bool>> &,       \
-    const Operators::GridTransfer *) const;
+    const Operators::GridTransfer *,              \
+    const std::uint64_t) const;
     PERIDEAL_INSTANTIATE(2)
     PERIDEAL_INSTANTIATE(3)
 #undef PERIDEAL_INSTANTIATE

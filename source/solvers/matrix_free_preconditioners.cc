@@ -178,8 +178,9 @@ namespace PeriDEAL
             "the wavelengths between the horizon and the coarse grid: 3D "
             "LPS, m = 3, 40^3 nodes, 23 CG iterations at 0.3, 15 at 0.8, 17 "
             "at 1.5; 60^3: 23 and 16). 2 needs the matrix-free operator "
-            "(boundary treatment 'none'), a uniform grid and no critical "
-            "stretch.");
+            "(boundary treatment 'none') and a uniform grid; with bond "
+            "failure a coarse cube is cut where a cube of the nodes inside "
+            "it is.");
         }
 
         void
@@ -232,7 +233,9 @@ namespace PeriDEAL
          * matrix: a load-stepped run solves with one local matrix hundreds
          * of times, and ML's set-up was a third of the run on the 100²
          * centre-cracked plate. The
-         * matrix is recognised by its address, size and Frobenius norm
+         * matrix is recognised by its address, the caller's version
+         * number (a matrix assembled again is a new one: ML holds the
+         * Trilinos matrix it was built on), size and Frobenius norm
          * (collective; a pass over the entries, a small fraction of the
          * set-up), the near-null space and the AMG settings. ML's set-up
          * is deterministic, so the iterates are the same either way.
@@ -330,6 +333,7 @@ namespace PeriDEAL
 
           explicit Key(const PreconditionerSetup &setup)
             : matrix(setup.local_matrix)
+            , version(setup.local_matrix_version)
             , rows(matrix->m())
             , nonzeros(matrix->n_nonzero_elements())
             , frobenius_norm(matrix->frobenius_norm())
@@ -339,6 +343,7 @@ namespace PeriDEAL
           {}
 
           const TrilinosWrappers::SparseMatrix *matrix         = nullptr;
+          std::uint64_t                         version        = 0;
           types::global_dof_index               rows           = 0;
           std::uint64_t                         nonzeros       = 0;
           double                                frobenius_norm = 0;
@@ -349,8 +354,8 @@ namespace PeriDEAL
           bool
           operator==(const Key &other) const
           {
-            return matrix == other.matrix && rows == other.rows &&
-                   nonzeros == other.nonzeros &&
+            return matrix == other.matrix && version == other.version &&
+                   rows == other.rows && nonzeros == other.nonzeros &&
                    frobenius_norm == other.frobenius_norm &&
                    constant_modes == other.constant_modes &&
                    smoother_sweeps == other.smoother_sweeps &&

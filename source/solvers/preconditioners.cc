@@ -11,6 +11,7 @@
 #include <perideal/solvers/integer_entry.h>
 #include <perideal/solvers/preconditioner.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <memory>
 
@@ -43,6 +44,14 @@ namespace PeriDEAL
     Preconditioner::needs_local_matrix() const
     {
       return false;
+    }
+
+
+    std::uint64_t
+    new_local_matrix_version()
+    {
+      static std::atomic<std::uint64_t> last{0};
+      return ++last;
     }
 
 

@@ -173,13 +173,11 @@ group_solvers() {
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = local elasticity\n  subsection local elasticity\n    set PD Jacobi weight = 0.5\n  end\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
     "Invalid value '0.5' for the parameter 'Linear solver/local elasticity/PD Jacobi weight': the operator of this boundary treatment has no diagonal" 2
   # 'local elasticity/Coarsening = 2' needs the matrix-free operator of
-  # boundary treatment 'none', a Jacobi term and no bond failure.
+  # boundary treatment 'none' and a Jacobi term.
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = GMRES\n  set Preconditioner = local elasticity\n  subsection local elasticity\n    set Coarsening = 2\n  end\nend\nsubsection Boundary treatment\n  set Treatment = surface nodes\nend/' \
     "Invalid value '2' for the parameter 'Linear solver/local elasticity/Coarsening': a coarser local grid works only with the matrix-free operator of boundary treatment 'none'" 2
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = local elasticity\n  subsection local elasticity\n    set Coarsening = 2\n    set PD Jacobi weight = 0\n  end\nend/' \
     "Invalid value '0' for the parameter 'Linear solver/local elasticity/PD Jacobi weight': with 'Coarsening = 2' the Jacobi term"
-  expect_error "s/set Dimension = 2/set Dimension = 2\nsubsection quasi-static\n  set Bond breaking = all beyond critical\nend\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = local elasticity\n  subsection local elasticity\n    set Coarsening = 2\n  end\nend/; s/    set Poisson's ratio = 0.25/    set Poisson's ratio = 0.25\n    set Critical stretch = 0.01/" \
-    "Invalid value '2' for the parameter 'Linear solver/local elasticity/Coarsening': the coarse grid does not yet follow the cracks" 2
   unnamed="not an input error: a solve that did not converge (it names 'Linear solver/Relative tolerance' and its value unquoted)" \
   expect_error 's/set Dimension = 2/set Dimension = 2\nsubsection Linear solver\n  set Operator = matrix-free\n  set Method = CG\n  set Preconditioner = Jacobi\n  set Maximum iterations = 3\nend/' \
     "did not converge: after 3 iterations" 2

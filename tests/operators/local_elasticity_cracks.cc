@@ -16,6 +16,9 @@
 //   straddling cubes, c the cut ones and f the factor;
 // - the same numbers on 1 and 2 processes (the masks of off-process
 //   corners come from their owners).
+// - the same on the coarse lattice of 'local elasticity/Coarsening = 2':
+//   a coarse cube is cut when a cube of side h inside it is; the energy
+//   ratio with the coarse cubes counted by hand.
 // Kind of test: closed forms (counted by hand), 1 and 2 ranks.
 
 #include <deal.II/base/mpi.h>
@@ -40,6 +43,7 @@
 #include <perideal/operators/local_elasticity_operator.h>
 #include <perideal/quadrature/exact_partial_volume.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -111,16 +115,8 @@ check(const unsigned int n_cells, const double horizon)
   using LocalElasticity   = Operators::LocalElasticityOperator<dim>;
   const auto     &lattice = lists.lattice();
   const IndexSet &owned   = dof_handler.locally_owned_dofs();
-  IndexSet        ghosts(owned.size());
-  for (unsigned int i = nodes.n_owned(); i < nodes.size(); ++i)
-    for (const auto dof : nodes[i].dofs)
-      ghosts.add_index(dof);
-  LinearAlgebra::distributed::Vector<double> exchanged(owned, ghosts, comm);
-  const auto        masks = LocalElasticity::broken_neighbor_masks(nodes,
-                                                            lattice,
-                                                            lists,
-                                                            state,
-                                                            exchanged);
+  const auto      masks =
+    LocalElasticity::broken_neighbor_masks(nodes, lattice, lists, state);
   const std::size_t n_cut = LocalElasticity::n_cut_cubes(nodes, lattice, masks);
   const std::size_t layers   = dim == 3 ? n_cells - 1 : 1;
   const std::size_t expected = std::size_t(std::floor(x_c - 0.5)) * layers;
@@ -154,6 +150,55 @@ check(const unsigned int n_cells, const double horizon)
   if (std::abs(ratio - reference) > 1e-12)
     std::cout << "  (ratio " << ratio << ", reference " << reference << ")"
               << std::endl;
+
+  // The same on every second node ('local elasticity/Coarsening = 2'): a
+  // coarse cube (side 2) is cut when one of the cubes of side 1 it holds
+  // is. By hand: the complete coarse cubes have lower lattice coordinates
+  // 0, 2, ..., n - 3 (so (n - 1) / 2 of them per direction); one row of
+  // them holds the node rows on both sides of y_c, the same jump in each;
+  // a column is cut when its lower x-coordinate 2q lies below the
+  // floor(x_c - 1/2) cut columns of the fine grid: (that + 1) / 2 columns.
+  Operators::CoarseLattice<dim> coarse;
+  coarse.reinit(nodes, lattice, none, 2);
+  TrilinosWrappers::SparseMatrix coarse_intact, coarse_cracked;
+  LocalElasticity::assemble(nodes,
+                            lattice,
+                            *model,
+                            none,
+                            coarse_intact,
+                            nullptr,
+                            &coarse);
+  LocalElasticity::assemble(nodes,
+                            lattice,
+                            *model,
+                            none,
+                            coarse_cracked,
+                            &masks,
+                            &coarse);
+  TrilinosWrappers::MPI::Vector coarse_jump(coarse.owned_dofs(), comm);
+  for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+    if (coarse.is_coarse(i))
+      coarse_jump[coarse.dof(i, 1)] = nodes[i].location[1] > y_c ? 1. : 0.;
+  coarse_jump.compress(VectorOperation::insert);
+  const double coarse_ratio = coarse_cracked.matrix_norm_square(coarse_jump) /
+                              coarse_intact.matrix_norm_square(coarse_jump);
+  const std::size_t coarse_columns = (n_cells - 1) / 2;
+  const std::size_t coarse_layers  = dim == 3 ? (n_cells - 1) / 2 : 1;
+  const std::size_t cut_columns =
+    std::min(coarse_columns, (std::size_t(std::floor(x_c - 0.5)) + 1) / 2);
+  const double coarse_straddling = coarse_columns * coarse_layers;
+  const double coarse_cut        = cut_columns * coarse_layers;
+  const double coarse_reference =
+    (coarse_straddling - coarse_cut + f * coarse_cut) / coarse_straddling;
+  std::cout << "  on every second node: energy of the jump, cracked / "
+               "intact, against (s - c + f c) / s with s = "
+            << coarse_straddling << ", c = " << coarse_cut << " within 1e-12: "
+            << (std::abs(coarse_ratio - coarse_reference) <= 1e-12 ? "yes" :
+                                                                     "NO")
+            << std::endl;
+  if (std::abs(coarse_ratio - coarse_reference) > 1e-12)
+    std::cout << "  (ratio " << coarse_ratio << ", reference "
+              << coarse_reference << ")" << std::endl;
 }
 
 

@@ -181,6 +181,9 @@ namespace PeriDEAL
       /// handed to the solver (null otherwise).
       Operators::CoarseLattice<dim>  coarse_lattice;
       const Operators::GridTransfer *local_transfer = nullptr;
+      /// Counts the assemblies of the local matrix (the preconditioner
+      /// builds anew when it changes).
+      std::uint64_t local_matrix_version = 0;
       /// The preconditioner's dual grid where the nodes are perturbed in
       /// their cells (empty on a uniform grid, which has its own).
       Discretization::Lattice<dim> preconditioner_cells;

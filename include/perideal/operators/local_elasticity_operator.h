@@ -52,8 +52,9 @@ namespace PeriDEAL
        * lattice must be uniform and the node set must hold the off-process
        * nodes next to owned ones. With @p coarse, on its coarse nodes
        * instead: dual cubes of side s h between them, rows and columns its
-       * DoFs, a coarse DoF prescribed where the PD DoF of its node is (not
-       * with @p broken_masks).
+       * DoFs, a coarse DoF prescribed where the PD DoF of its node is; a
+       * coarse cube is cut (@p broken_masks) when one of the cubes of side
+       * h it holds is.
        */
       static void
       assemble(const Discretization::NodeSet<dim> &nodes,
@@ -71,17 +72,13 @@ namespace PeriDEAL
        * at offset b in {-1, 0, 1}^dim (the 3^dim - 1 offsets in
        * lexicographic order, x fastest, the centre left out) is broken.
        * Collective: the masks of off-process nodes come from their owners
-       * through @p exchanged, a vector with the DoF layout (owned DoFs and
-       * the ghosts of the off-process nodes next to owned ones; its values
-       * are overwritten). Nodes outside its ghosts get empty masks.
+       * (every node of the set).
        */
       static std::vector<std::uint32_t>
-      broken_neighbor_masks(
-        const Discretization::NodeSet<dim>         &nodes,
-        const Discretization::Lattice<dim>         &lattice,
-        const Discretization::NeighborList<dim>    &lists,
-        const Discretization::BondState<dim>       &bonds,
-        LinearAlgebra::distributed::Vector<double> &exchanged);
+      broken_neighbor_masks(const Discretization::NodeSet<dim>      &nodes,
+                            const Discretization::Lattice<dim>      &lattice,
+                            const Discretization::NeighborList<dim> &lists,
+                            const Discretization::BondState<dim>    &bonds);
 
       /// The number of dual cubes cut by @p broken_masks whose lower
       /// corner is owned here (all processes together; collective).

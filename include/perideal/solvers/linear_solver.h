@@ -76,6 +76,7 @@ namespace PeriDEAL
        * for the assembled solve (of the local matrix). @p local_transfer:
        * where the local matrix lives on a coarser lattice
        * (Preconditioner::local_matrix_coarsening() > 1), the transfer to it.
+       * @p local_matrix_version: PreconditionerSetup::local_matrix_version.
        */
       template <int dim>
       SolverReport
@@ -84,7 +85,8 @@ namespace PeriDEAL
             const LinearAlgebra::distributed::Vector<double> &rhs,
             const TrilinosWrappers::SparseMatrix             *local_matrix,
             const std::vector<std::vector<bool>>             &constant_modes,
-            const Operators::GridTransfer *local_transfer = nullptr) const;
+            const Operators::GridTransfer *local_transfer       = nullptr,
+            const std::uint64_t            local_matrix_version = 0) const;
 
       /// A linear map between Trilinos vectors: dst = A src.
       using TrilinosMap =

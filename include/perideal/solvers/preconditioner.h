@@ -13,6 +13,7 @@
 #include <perideal/operators/coarse_lattice.h>
 #include <perideal/solvers/amg.h>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -66,6 +67,12 @@ namespace PeriDEAL
       /// grid (Operators::CoarseLattice).
       const Operators::GridTransfer *local_transfer = nullptr;
 
+      /// Where needs_local_matrix(): changes whenever the caller assembles
+      /// local_matrix again, so that a preconditioner that keeps what it
+      /// built for the same matrix (ML's hierarchy holds the Trilinos
+      /// matrix it was built on) builds anew.
+      std::uint64_t local_matrix_version = 0;
+
       /// OperatorForm::matrix_free: the inverse of the operator's diagonal
       /// (every entry positive; the solver refuses zero rows before).
       const VectorType *inverse_diagonal = nullptr;
@@ -83,6 +90,15 @@ namespace PeriDEAL
       /// 'Linear solver/AMG ...'.
       AmgSettings amg;
     };
+
+    /**
+     * A number for PreconditionerSetup::local_matrix_version that no
+     * earlier call returned (in this process; the callers call it the same
+     * number of times on every process).
+     */
+    std::uint64_t
+    new_local_matrix_version();
+
 
     /**
      * A preconditioner of the linear solver, selected by name in 'Linear
