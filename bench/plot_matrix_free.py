@@ -22,6 +22,12 @@ def read(name):
         return list(csv.DictReader(f))
 
 
+def save(fig, name):
+    """Under a temporary name, then renamed: a kill leaves the old file whole."""
+    fig.savefig(name + ".tmp.png", dpi=120)
+    os.replace(name + ".tmp.png", name)
+
+
 # The preconditioners as the summary names them, and their markers.
 PRECONDITIONERS = (("local elasticity", "o"),
                    ("local elasticity (coarsening 2)", "^"),
@@ -48,7 +54,7 @@ for a in axes:
     a.grid(True, which="both", alpha=0.3)
     a.legend()
 fig.tight_layout()
-fig.savefig("scaling.png", dpi=120)
+save(fig, "scaling.png")
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
 for prec, marker in PRECONDITIONERS:
@@ -60,7 +66,7 @@ ax.set(xlabel="wall time [s]", ylabel="relative L2 error",
 ax.grid(True, which="both", alpha=0.3)
 ax.legend()
 fig.tight_layout()
-fig.savefig("error_vs_time.png", dpi=120)
+save(fig, "error_vs_time.png")
 
 rows = read("m_sweep.csv")
 fig, ax = plt.subplots(figsize=(6, 4.5))
@@ -72,4 +78,4 @@ ax.set(xlabel="m-ratio", ylabel="CG iterations", title="iterations against m")
 ax.grid(True, alpha=0.3)
 ax.legend()
 fig.tight_layout()
-fig.savefig("m_sweep.png", dpi=120)
+save(fig, "m_sweep.png")

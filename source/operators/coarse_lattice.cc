@@ -129,9 +129,15 @@ namespace PeriDEAL
       row_start.assign(1, 0);
       corner_local.clear();
       corner_weight.clear();
-      std::vector<int>    corner_node;
-      IndexSet            ghosts(n_global * dim);
-      std::vector<double> weights;
+      std::vector<int> corner_node;
+      const auto is_owned_number = [&](const types::global_dof_index number) {
+        return number >= first && number < first + n_owned_coarse;
+      };
+      // The off-process corners' numbers, gathered, then sorted once: one
+      // add_indices() (IndexSet::add_range() out of order inserts into a
+      // sorted list, quadratic over many nodes).
+      std::vector<types::global_dof_index> ghost_numbers;
+      std::vector<double>                  weights;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
           const auto                   &x = lattice.coordinates(i);
@@ -159,8 +165,11 @@ namespace PeriDEAL
               const int j = lattice.node_at(y);
               if (j < 0)
                 continue;
-              AssertThrow(coarse_number[j] != numbers::invalid_dof_index,
-                          ExcInternalError());
+              // A corner's owner marks it coarse from the same global
+              // coordinates (an invariant: no check that one process
+              // could fail alone before the collective calls below).
+              Assert(coarse_number[j] != numbers::invalid_dof_index,
+                     ExcInternalError());
               corner_node.push_back(j);
               weights.push_back(w);
               sum += w;
@@ -169,11 +178,22 @@ namespace PeriDEAL
             {
               corner_weight.push_back(weights[k] / sum);
               const auto number = coarse_number[corner_node[row_begin + k]];
-              if (!owned.is_element(number * dim))
-                ghosts.add_range(number * dim, (number + 1) * dim);
+              if (!is_owned_number(number))
+                ghost_numbers.push_back(number);
             }
           row_start.push_back(corner_weight.size());
         }
+      std::sort(ghost_numbers.begin(), ghost_numbers.end());
+      ghost_numbers.erase(std::unique(ghost_numbers.begin(),
+                                      ghost_numbers.end()),
+                          ghost_numbers.end());
+      std::vector<types::global_dof_index> ghost_dofs;
+      ghost_dofs.reserve(ghost_numbers.size() * dim);
+      for (const auto number : ghost_numbers)
+        for (unsigned int p = 0; p < dim; ++p)
+          ghost_dofs.push_back(number * dim + p);
+      IndexSet ghosts(n_global * dim);
+      ghosts.add_indices(ghost_dofs.begin(), ghost_dofs.end());
       ghosts.compress();
       partitioner =
         std::make_shared<Utilities::MPI::Partitioner>(owned, ghosts, comm);
@@ -199,7 +219,8 @@ namespace PeriDEAL
         if (coarse_number[i] != numbers::invalid_dof_index)
           {
             const auto global = coarse_number[i] * dim;
-            if (!owned.is_element(global) && !ghosts.is_element(global))
+            if (!partitioner->in_local_range(global) &&
+                !partitioner->is_ghost_entry(global))
               continue;
             const unsigned int local = partitioner->global_to_local(global);
             for (unsigned int p = 0; p < dim; ++p)

@@ -5,7 +5,10 @@
 // - the interpolation P reproduces rigid translations at every node
 //   (N even too, where the last layer has no upper corner) and, where the
 //   coarse cubes cover the body (N odd), every linear field exactly;
-// - restriction is the transpose: g . P^T f = (P g) . f for arbitrary f, g;
+// - restriction is the transpose: g . P^T f = (P g) . f for arbitrary f, g
+//   (both directions read the same weights, so on one process this holds
+//   by construction; on two it checks the communication: the pushed sums
+//   of compress(add) against the pulled ghost values);
 // - the coarse matrix is the Galerkin product: for N odd the coarse Q1
 //   space is a subspace of the fine one and P its nodal embedding, so
 //   A_2h = P^T A_h P to round-off (A_h assembled by the same class on all
