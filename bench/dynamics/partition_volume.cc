@@ -73,7 +73,7 @@ main(int argc, char **argv)
   nodes.reinit(dof_handler, range);
 
   // The processes it exchanges ghost values with (either way).
-  const auto                partitioner = nodes.make_node_partitioner();
+  const auto                partitioner = nodes.node_partitioner();
   std::vector<unsigned int> neighbours;
   for (const auto &[rank, count] : partitioner->ghost_targets())
     neighbours.push_back(rank);

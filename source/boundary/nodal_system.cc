@@ -211,7 +211,9 @@ namespace PeriDEAL
       // intact one misses the crack-opening modes, which then cost CG
       // iterations. It is assembled again (and the multigrid hierarchy
       // rebuilt) when the cut cubes have grown by a tenth, not at every
-      // broken bond: a run to failure re-solves hundreds of times.
+      // broken bond: a run to failure re-solves hundreds of times; and
+      // whenever new DoFs are held (the local matrix and the coarse
+      // lattice leave them out).
       std::vector<std::uint32_t> broken_masks;
       std::size_t                n_cut = 0;
       if (fracture)
@@ -226,11 +228,13 @@ namespace PeriDEAL
             Operators::LocalElasticityOperator<dim>::n_cut_cubes(context.nodes,
                                                                  lattice,
                                                                  broken_masks);
-          if (preconditioner_ready && n_cut <= cut_cubes_built * 11 / 10)
+          if (preconditioner_ready && n_cut <= cut_cubes_built * 11 / 10 &&
+              n_holds == holds_built)
             return;
         }
       preconditioner_ready = true;
       cut_cubes_built      = n_cut;
+      holds_built          = n_holds;
       // On a coarser lattice ('local elasticity/Coarsening'): its own
       // DoFs, reached through the interpolation.
       const unsigned int coarsening =
@@ -241,7 +245,8 @@ namespace PeriDEAL
           coarse_lattice.reinit(context.nodes,
                                 lattice,
                                 constraints,
-                                coarsening);
+                                coarsening,
+                                fracture ? &boundary_constraints : nullptr);
           local_transfer = &coarse_lattice;
         }
       Operators::LocalElasticityOperator<dim>::assemble(

@@ -170,7 +170,7 @@ namespace PeriDEAL
       // One entry per node: the partitioner's import lists are the owned
       // nodes that other processes hold as ghosts, and who; its ghost
       // targets the owners of the ghosts here.
-      const auto partitioner_ptr = nodes->make_node_partitioner();
+      const auto partitioner_ptr = nodes->node_partitioner();
       const Utilities::MPI::Partitioner &partitioner = *partitioner_ptr;
 
       // Owned nodes by their place in the owned range.

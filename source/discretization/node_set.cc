@@ -116,6 +116,7 @@ namespace PeriDEAL
                              "FESystem(FE_DGQ(0), dim): one node per cell."));
 
       all_nodes.clear();
+      node_partitioner_cache.reset();
       all_nodes.reserve(dof_handler.n_locally_owned_dofs() / dim);
       double                               local_max_diameter = 0;
       std::vector<types::global_dof_index> dof_indices(dim);
@@ -308,8 +309,10 @@ namespace PeriDEAL
 
     template <int dim>
     std::shared_ptr<const Utilities::MPI::Partitioner>
-    NodeSet<dim>::make_node_partitioner() const
+    NodeSet<dim>::node_partitioner() const
     {
+      if (node_partitioner_cache)
+        return node_partitioner_cache;
       const types::global_dof_index        n_global = relevant.size() / dim;
       IndexSet                             owned(n_global), all(n_global);
       std::vector<types::global_dof_index> indices;
@@ -324,9 +327,9 @@ namespace PeriDEAL
       std::sort(indices.begin(), indices.end());
       all.add_indices(indices.begin(), indices.end());
       all.compress();
-      return std::make_shared<Utilities::MPI::Partitioner>(owned,
-                                                           all,
-                                                           communicator);
+      node_partitioner_cache =
+        std::make_shared<Utilities::MPI::Partitioner>(owned, all, communicator);
+      return node_partitioner_cache;
     }
 
 

@@ -5,6 +5,7 @@
  */
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <perideal/base/exceptions.h>
 #include <perideal/operators/coarse_lattice.h>
@@ -50,11 +51,36 @@ namespace PeriDEAL
 
 
     template <int dim>
+    std::vector<std::uint8_t>
+    owner_constraint_masks(const Discretization::NodeSet<dim> &nodes,
+                           const AffineConstraints<double>    &constraints)
+    {
+      LinearAlgebra::distributed::Vector<double> exchanged(
+        nodes.node_partitioner());
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        {
+          unsigned int mask = 0;
+          for (unsigned int p = 0; p < dim; ++p)
+            if (constraints.is_constrained(nodes[i].dofs[p]))
+              mask |= 1u << p;
+          exchanged(nodes[i].dofs[0] / dim) = mask;
+        }
+      exchanged.update_ghost_values();
+      std::vector<std::uint8_t> masks(nodes.size());
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        masks[i] = static_cast<std::uint8_t>(exchanged(nodes[i].dofs[0] / dim));
+      return masks;
+    }
+
+
+    template <int dim>
     void
-    CoarseLattice<dim>::reinit(const Discretization::NodeSet<dim> &nodes,
-                               const Discretization::Lattice<dim> &lattice,
-                               const AffineConstraints<double>    &constraints,
-                               const unsigned int                  stride)
+    CoarseLattice<dim>::reinit(
+      const Discretization::NodeSet<dim> &nodes,
+      const Discretization::Lattice<dim> &lattice,
+      const AffineConstraints<double>    &constraints,
+      const unsigned int                  stride,
+      const AffineConstraints<double>    *boundary_constraints)
     {
       AssertThrow(lattice.is_uniform(),
                   ExcMessage("A coarse lattice needs a uniform grid of cubes "
@@ -93,28 +119,104 @@ namespace PeriDEAL
       }
       n_global = Utilities::MPI::sum(n_owned_coarse, comm);
 
-      // The numbers of the off-process coarse nodes, from their owners
-      // (a vector with one entry per node; -1 for nodes that are not
+      // The constrained components of every node of the set, as the
+      // owners have them.
+      const std::vector<std::uint8_t> fine_mask =
+        owner_constraint_masks(nodes, constraints);
+      const std::vector<std::uint8_t> boundary_mask =
+        boundary_constraints != nullptr ?
+          owner_constraint_masks(nodes, *boundary_constraints) :
+          fine_mask;
+
+      // The prescribed components of an owned coarse node c: those of its
+      // own PD DoFs, and each component p of a node j in its support
+      // (within s - 1 steps) that a boundary condition prescribes while
+      // none of j's coarse corners has p prescribed. The corners of j lie
+      // within 2 (s - 1) steps of c: in the node set.
+      constexpr unsigned int n_corners = 1u << dim;
+      const auto for_each_corner = [&](const std::array<std::int64_t, dim> &x,
+                                       const auto                          &f) {
+        std::array<std::int64_t, dim> lower, r;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            r[d]     = remainder(x[d], s);
+            lower[d] = x[d] - r[d];
+          }
+        for (unsigned int c = 0; c < n_corners; ++c)
+          {
+            double                        w = 1;
+            std::array<std::int64_t, dim> y = lower;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const bool upper = (c >> d) & 1;
+                w *= upper ? double(r[d]) / s : double(s - r[d]) / s;
+                y[d] += upper ? s : 0;
+              }
+            if (w == 0)
+              continue;
+            const int j = lattice.node_at(y);
+            if (j >= 0)
+              f(j, w);
+          }
+      };
+      const auto owned_coarse_mask = [&](const unsigned int c) {
+        unsigned int       mask      = fine_mask[c];
+        const auto        &x         = lattice.coordinates(c);
+        const unsigned int width     = 2 * s - 1,
+                           n_support = Utilities::pow(width, dim);
+        for (unsigned int o = 0; o < n_support; ++o)
+          {
+            std::array<std::int64_t, dim> y = x;
+            for (unsigned int d = 0, q = o; d < dim; ++d, q /= width)
+              y[d] += std::int64_t(q % width) - std::int64_t(s - 1);
+            const int j = lattice.node_at(y);
+            if (j < 0)
+              continue;
+            const unsigned int unrepresented = boundary_mask[j] & ~mask;
+            if (unrepresented == 0)
+              continue;
+            unsigned int represented = 0;
+            for_each_corner(lattice.coordinates(j),
+                            [&](const int k, const double) {
+                              represented |= fine_mask[k];
+                            });
+            mask |= unrepresented & ~represented;
+          }
+        return mask;
+      };
+
+      // The numbers and prescribed components of the off-process coarse
+      // nodes, from their owners (a vector with one entry per node:
+      // number * 8 + mask, exact in a double; -1 for nodes that are not
       // coarse).
       coarse_number.assign(nodes.size(), numbers::invalid_dof_index);
+      coarse_mask.assign(nodes.size(), 0);
       {
         LinearAlgebra::distributed::Vector<double> numbers_of_nodes(
-          nodes.make_node_partitioner());
+          nodes.node_partitioner());
         types::global_dof_index next = first;
         for (unsigned int i = 0; i < nodes.n_owned(); ++i)
           {
             const bool coarse = is_on_coarse_lattice(i);
             if (coarse)
-              coarse_number[i] = next++;
+              {
+                coarse_number[i] = next++;
+                coarse_mask[i]   = owned_coarse_mask(i);
+              }
             numbers_of_nodes(nodes[i].dofs[0] / dim) =
-              coarse ? double(coarse_number[i]) : -1.;
+              coarse ? double(coarse_number[i]) * 8 + coarse_mask[i] : -1.;
           }
         numbers_of_nodes.update_ghost_values();
         for (unsigned int i = nodes.n_owned(); i < nodes.size(); ++i)
           {
             const double v = numbers_of_nodes(nodes[i].dofs[0] / dim);
             if (v >= 0)
-              coarse_number[i] = static_cast<types::global_dof_index>(v);
+              {
+                const auto packed = static_cast<std::uint64_t>(v);
+                coarse_number[i] =
+                  static_cast<types::global_dof_index>(packed / 8);
+                coarse_mask[i] = static_cast<std::uint8_t>(packed % 8);
+              }
           }
       }
 
@@ -125,7 +227,6 @@ namespace PeriDEAL
       // The interpolation weights of the owned nodes: multilinear on the
       // coarse cube that holds the node, over the corners present,
       // rescaled to sum to one.
-      constexpr unsigned int n_corners = 1u << dim;
       row_start.assign(1, 0);
       corner_local.clear();
       corner_weight.clear();
@@ -140,40 +241,22 @@ namespace PeriDEAL
       std::vector<double>                  weights;
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
-          const auto                   &x = lattice.coordinates(i);
-          std::array<std::int64_t, dim> lower, r;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              r[d]     = remainder(x[d], s);
-              lower[d] = x[d] - r[d];
-            }
           weights.clear();
           const std::size_t row_begin = corner_node.size();
           double            sum       = 0;
-          for (unsigned int c = 0; c < n_corners; ++c)
-            {
-              double                        w = 1;
-              std::array<std::int64_t, dim> y = lower;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  const bool upper = (c >> d) & 1;
-                  w *= upper ? double(r[d]) / s : double(s - r[d]) / s;
-                  y[d] += upper ? s : 0;
-                }
-              if (w == 0)
-                continue;
-              const int j = lattice.node_at(y);
-              if (j < 0)
-                continue;
-              // A corner's owner marks it coarse from the same global
-              // coordinates (an invariant: no check that one process
-              // could fail alone before the collective calls below).
-              Assert(coarse_number[j] != numbers::invalid_dof_index,
-                     ExcInternalError());
-              corner_node.push_back(j);
-              weights.push_back(w);
-              sum += w;
-            }
+          for_each_corner(lattice.coordinates(i),
+                          [&](const int j, const double w) {
+                            // A corner's owner marks it coarse from the
+                            // same global coordinates (an invariant: no
+                            // check that one process could fail alone
+                            // before the collective calls below).
+                            Assert(coarse_number[j] !=
+                                     numbers::invalid_dof_index,
+                                   ExcInternalError());
+                            corner_node.push_back(j);
+                            weights.push_back(w);
+                            sum += w;
+                          });
           for (std::size_t k = 0; k < weights.size(); ++k)
             {
               corner_weight.push_back(weights[k] / sum);
@@ -213,7 +296,7 @@ namespace PeriDEAL
           fine_dof[i] = nodes[i].dofs[0];
           for (unsigned int p = 0; p < dim; ++p)
             fine_constrained[std::size_t(i) * dim + p] =
-              constraints.is_constrained(nodes[i].dofs[p]);
+              (fine_mask[i] >> p) & 1;
         }
       for (unsigned int i = 0; i < nodes.size(); ++i)
         if (coarse_number[i] != numbers::invalid_dof_index)
@@ -224,8 +307,7 @@ namespace PeriDEAL
               continue;
             const unsigned int local = partitioner->global_to_local(global);
             for (unsigned int p = 0; p < dim; ++p)
-              coarse_constrained[local + p] =
-                constraints.is_constrained(nodes[i].dofs[p]);
+              coarse_constrained[local + p] = (coarse_mask[i] >> p) & 1;
           }
     }
 
@@ -243,6 +325,15 @@ namespace PeriDEAL
     CoarseLattice<dim>::is_coarse(const unsigned int i) const
     {
       return coarse_number[i] != numbers::invalid_dof_index;
+    }
+
+
+    template <int dim>
+    bool
+    CoarseLattice<dim>::is_prescribed(const unsigned int i,
+                                      const unsigned int component) const
+    {
+      return (coarse_mask[i] >> component) & 1;
     }
 
 
@@ -343,6 +434,7 @@ namespace PeriDEAL
     CoarseLattice<dim>::memory_consumption() const
     {
       return coarse_number.capacity() * sizeof(types::global_dof_index) +
+             coarse_mask.capacity() +
              row_start.capacity() * sizeof(unsigned int) +
              corner_local.capacity() * sizeof(unsigned int) +
              corner_weight.capacity() * sizeof(double) +
@@ -351,6 +443,12 @@ namespace PeriDEAL
     }
 
 
+    template std::vector<std::uint8_t>
+    owner_constraint_masks(const Discretization::NodeSet<2> &,
+                           const AffineConstraints<double> &);
+    template std::vector<std::uint8_t>
+    owner_constraint_masks(const Discretization::NodeSet<3> &,
+                           const AffineConstraints<double> &);
     template class CoarseLattice<2>;
     template class CoarseLattice<3>;
   } // namespace Operators

@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
@@ -138,7 +139,7 @@ namespace PeriDEAL
       // after BondState::synchronize(), so either end's mask would do; the
       // owner's is the one every process has).
       LinearAlgebra::distributed::Vector<double> exchanged(
-        nodes.make_node_partitioner());
+        nodes.node_partitioner());
       for (unsigned int i = 0; i < nodes.n_owned(); ++i)
         {
           if (!bonds.any_broken(i))
@@ -197,9 +198,15 @@ namespace PeriDEAL
       const auto dof_of = [&](const unsigned int i, const unsigned int p) {
         return coarse != nullptr ? coarse->dof(i, p) : nodes[i].dofs[p];
       };
-      // Prescribed: the PD DoF of the same node and component.
+      // Prescribed: on the full lattice the PD DoF of the same node and
+      // component, as its owner has it (a held node's hold is known to its
+      // owner only); on a coarse lattice as the coarse lattice decides.
+      const std::vector<std::uint8_t> owner_masks =
+        coarse == nullptr ? owner_constraint_masks(nodes, constraints) :
+                            std::vector<std::uint8_t>();
       const auto prescribed = [&](const unsigned int i, const unsigned int p) {
-        return constraints.is_constrained(nodes[i].dofs[p]);
+        return coarse != nullptr ? coarse->is_prescribed(i, p) :
+                                   bool((owner_masks[i] >> p) & 1);
       };
       IndexSet owned(nodes.relevant_dofs().size());
       if (coarse != nullptr)
@@ -212,6 +219,24 @@ namespace PeriDEAL
           owned.compress();
         }
 
+      // A coarse cube (s = 2) exists only where every lattice point in it
+      // is a node: one whose corners exist around a missing node (a notch
+      // narrower than s h) would be stiff across the notch.
+      const auto is_filled = [&](const std::array<int, n_vertices> &corner) {
+        if (s == 1)
+          return true;
+        const auto        &lower = lattice.coordinates(corner[0]);
+        const unsigned int width = s + 1;
+        for (unsigned int o = 0; o < Utilities::pow(width, dim); ++o)
+          {
+            std::array<std::int64_t, dim> y = lower;
+            for (unsigned int d = 0, q = o; d < dim; ++d, q /= width)
+              y[d] += q % width;
+            if (lattice.node_at(y) < 0)
+              return false;
+          }
+        return true;
+      };
       // The dual cubes that contain node i: i is vertex a of the cube with
       // lower corner x_i - a. Calls f(a, corner nodes) for each complete
       // cube.
@@ -230,7 +255,7 @@ namespace PeriDEAL
                 corner[b] = lattice.node_at(y);
                 complete  = corner[b] >= 0;
               }
-            if (complete)
+            if (complete && is_filled(corner))
               f(a, corner);
           }
       };

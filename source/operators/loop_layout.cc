@@ -46,7 +46,7 @@ namespace PeriDEAL
                                  "numbered consecutively from a multiple of "
                                  "dim (FESystem of FE_DGQ(0) without "
                                  "renumbering)."));
-          partitioner = nodes->make_node_partitioner();
+          partitioner = nodes->node_partitioner();
           for (unsigned int i = 0; i < n; ++i)
             vector_index[i] =
               partitioner->global_to_local((*nodes)[i].dofs[0] / dim);

@@ -15,7 +15,20 @@
 //   nodes, A_2h on the coarse ones; the classical identity of nested
 //   conforming spaces);
 // - with a Dirichlet layer, P and P^T vanish at the prescribed DoFs of
-//   either grid.
+//   either grid;
+// - the prescribed coarse DoFs, against the rule applied by hand to the
+//   layer's position: a clamp on the last layer of an even node count (an
+//   odd lattice coordinate, no coarse node in it) prescribes the coarse
+//   nodes one layer inside, per component (component-wise clamps); and the
+//   coarse matrix then holds the rigid translations (t . A_2h t > 0;
+//   without that rule it is singular, t . A_2h t = 0 to round-off);
+// - constraints that only the owner knows (nodes held where their bonds
+//   broke: each process constrains its owned nodes of the plane x = 2
+//   only, not represented on the coarse grid): every process, for its
+//   owned and off-process coarse nodes, flags exactly those of that plane,
+//   and P^T leaves them zero (on two processes the off-process flags come
+//   from the owner; read from a process's own constraints they would be
+//   free there and the neighbours' residuals would reach them).
 // On 1 and 2 processes the same output.
 // Kind of test: closed forms and algebraic identities, 1 and 2 ranks.
 
@@ -60,11 +73,22 @@ pseudo_random(const Point<dim> &x, const unsigned int p)
   return std::sin(13.1 * v);
 }
 
+/// Which DoFs are constrained.
+enum class Constraints
+{
+  none,
+  dirichlet,     ///< every component of the nodes with x < 2
+  thin_clamp,    ///< every component of the last layer of nodes in x
+  componentwise, ///< component 0 of the first layer, 1 of the last
+  held           ///< each process its owned nodes of the plane x = 2 only
+};
+
 template <int dim>
 void
-check(const unsigned int n, const bool with_dirichlet)
+check(const unsigned int n, const Constraints kind)
 {
-  const MPI_Comm                            comm = MPI_COMM_WORLD;
+  const bool     with_dirichlet = kind != Constraints::none;
+  const MPI_Comm comm           = MPI_COMM_WORLD;
   parallel::distributed::Triangulation<dim> tria(comm);
   GridGenerator::subdivided_hyper_cube(tria, n, 0, n);
   DoFHandler<dim> dof_handler(tria);
@@ -76,18 +100,38 @@ check(const unsigned int n, const bool with_dirichlet)
   Discretization::Lattice<dim> lattice;
   lattice.reinit(nodes);
 
-  // Dirichlet layer: every DoF of the nodes with x < 2 (the first two
-  // columns of nodes).
+  // The constraints (node i at lattice coordinate x - 1/2, h = 1).
   AffineConstraints<double> constraints;
-  if (with_dirichlet)
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      if (nodes[i].location[0] < 2)
-        for (const auto dof : nodes[i].dofs)
-          constraints.add_line(dof);
+  const auto constrain = [&](const unsigned int i, const unsigned int p) {
+    const double x = nodes[i].location[0];
+    switch (kind)
+      {
+        case Constraints::none:
+          return false;
+        case Constraints::dirichlet:
+          return x < 2;
+        case Constraints::thin_clamp:
+          return x > n - 1;
+        case Constraints::componentwise:
+          return (p == 0 && x < 1) || (p == 1 && x > n - 1);
+        case Constraints::held:
+          return i < nodes.n_owned() && x > 2 && x < 3;
+      }
+    return false;
+  };
+  for (unsigned int i = 0; i < nodes.size(); ++i)
+    for (unsigned int p = 0; p < dim; ++p)
+      if (constrain(i, p))
+        constraints.add_line(nodes[i].dofs[p]);
   constraints.close();
 
-  Operators::CoarseLattice<dim> coarse;
-  coarse.reinit(nodes, lattice, constraints, 2);
+  Operators::CoarseLattice<dim>   coarse;
+  const AffineConstraints<double> no_boundary_constraints;
+  coarse.reinit(nodes,
+                lattice,
+                constraints,
+                2,
+                kind == Constraints::held ? &no_boundary_constraints : nullptr);
 
   const IndexSet &owned = dof_handler.locally_owned_dofs();
   VectorType      fine(owned, comm), fine2(owned, comm);
@@ -128,22 +172,73 @@ check(const unsigned int n, const bool with_dirichlet)
       std::cout << "NO, error " << error << std::endl;
   };
 
+  const char *names[] = {"",
+                         ", Dirichlet layer x < 2",
+                         ", clamp on the last layer",
+                         ", component 0 clamped on the first layer, 1 on "
+                         "the last",
+                         ", owned nodes of the plane x = 2 held"};
   if (Utilities::MPI::this_mpi_process(comm) == 0)
-    std::cout << dim << "D, " << n << " nodes per direction"
-              << (with_dirichlet ? ", Dirichlet layer x < 2" : "") << ": "
-              << coarse.n_global_nodes() << " coarse nodes (expected "
+    std::cout << dim << "D, " << n << " nodes per direction" << names[int(kind)]
+              << ": " << coarse.n_global_nodes() << " coarse nodes (expected "
               << std::pow((n + 1) / 2, dim) << ")" << std::endl;
 
+  // The prescribed coarse DoFs, by hand: the coarse nodes of the clamped
+  // layer where it has some (even lattice coordinate), else those one
+  // layer inside; every process, owned and off-process coarse nodes.
+  if (kind != Constraints::none)
+    {
+      const auto expected = [&](const Point<dim> &x, const unsigned int p) {
+        const int layer = int(x[0]); // the lattice coordinate
+        switch (kind)
+          {
+            case Constraints::dirichlet:
+              return layer == 0;
+            case Constraints::thin_clamp:
+              return layer == int(n) - 2;
+            case Constraints::componentwise:
+              return (p == 0 && layer == 0) || (p == 1 && layer == int(n) - 2);
+            case Constraints::held:
+              return layer == 2;
+            default:
+              return false;
+          }
+      };
+      unsigned int wrong = 0, n_prescribed = 0;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        if (coarse.is_coarse(i))
+          for (unsigned int p = 0; p < dim; ++p)
+            {
+              wrong +=
+                coarse.is_prescribed(i, p) != expected(nodes[i].location, p);
+              n_prescribed += i < nodes.n_owned() && coarse.is_prescribed(i, p);
+            }
+      wrong        = Utilities::MPI::sum(wrong, comm);
+      n_prescribed = Utilities::MPI::sum(n_prescribed, comm);
+      // One layer of coarse nodes, all components but in the
+      // component-wise case (one each of two layers).
+      const unsigned int per_layer = std::pow((n + 1) / 2, dim - 1);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        std::cout << "  prescribed coarse DoFs: " << n_prescribed
+                  << " (expected "
+                  << per_layer * (kind == Constraints::componentwise ? 2 : dim)
+                  << "), where the rule puts them on every process: "
+                  << (wrong == 0 ? "yes" : "NO") << std::endl;
+    }
+
   // Rigid translations.
-  {
-    const auto one = [](const Point<dim> &, const unsigned int) { return 1.; };
-    fill_coarse(g, one);
-    fine = 0;
-    coarse.prolongate_add(fine, g);
-    // With the layer (the nodes at lattice coordinate 0 and 1), every
-    // free node's corners are free: 1 there, 0 at the prescribed DoFs.
-    report("P reproduces the translations", max_error(fine, one));
-  }
+  if (kind == Constraints::none || kind == Constraints::dirichlet)
+    {
+      const auto one = [](const Point<dim> &, const unsigned int) {
+        return 1.;
+      };
+      fill_coarse(g, one);
+      fine = 0;
+      coarse.prolongate_add(fine, g);
+      // With the layer (the nodes at lattice coordinate 0 and 1), every
+      // free node's corners are free: 1 there, 0 at the prescribed DoFs.
+      report("P reproduces the translations", max_error(fine, one));
+    }
 
   // Linear fields, where the coarse cubes cover the body.
   if (n % 2 == 1 && !with_dirichlet)
@@ -184,23 +279,58 @@ check(const unsigned int n, const bool with_dirichlet)
     for (unsigned int i = 0; i < nodes.n_owned(); ++i)
       if (coarse.is_coarse(i))
         for (unsigned int p = 0; p < dim; ++p)
-          if (constraints.is_constrained(nodes[i].dofs[p]))
+          if (coarse.is_prescribed(i, p))
             e = std::max(e, std::abs(g2[coarse.dof(i, p)]));
     report("prescribed DoFs take no part", Utilities::MPI::max(e, comm));
   }
 
+  ParameterHandler prm;
+  Models::ModelRegistry<dim>::declare_parameters(prm);
+  prm.enter_subsection("bond-based");
+  prm.set("Young's modulus", "1");
+  prm.set("Poisson's ratio", "0.25");
+  prm.leave_subsection();
+  const auto model      = Models::ModelRegistry<dim>::create("bond-based", prm);
+  using LocalElasticity = Operators::LocalElasticityOperator<dim>;
+
+  // The coarse matrix holds the translations when only a layer without
+  // coarse nodes is clamped: t . A_2h t > 0 relative to t . diag(A_2h) t.
+  if (kind == Constraints::thin_clamp)
+    {
+      TrilinosWrappers::SparseMatrix a_coarse;
+      LocalElasticity::assemble(nodes,
+                                lattice,
+                                *model,
+                                constraints,
+                                a_coarse,
+                                nullptr,
+                                &coarse);
+      double smallest = 1;
+      for (unsigned int p = 0; p < dim; ++p)
+        {
+          fill_coarse(g, [&](const Point<dim> &, const unsigned int q) {
+            return q == p ? 1. : 0.;
+          });
+          for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+            if (coarse.is_coarse(i) && coarse.is_prescribed(i, p))
+              g[coarse.dof(i, p)] = 0;
+          a_coarse.vmult(g2, g);
+          double diagonal = 0;
+          for (const auto k : coarse.owned_dofs())
+            diagonal += g[k] * g[k] * a_coarse.diag_element(k);
+          diagonal = Utilities::MPI::sum(diagonal, comm);
+          smallest = std::min(smallest, (g * g2) / diagonal);
+        }
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        std::cout << "  the coarse matrix holds the translations "
+                     "(t.At / t.Dt > 1e-6): "
+                  << (smallest > 1e-6 ? "yes" : "NO") << std::endl;
+    }
+
   // The coarse matrix is the Galerkin product of the fine one.
   if (n % 2 == 1 && !with_dirichlet)
     {
-      ParameterHandler prm;
-      Models::ModelRegistry<dim>::declare_parameters(prm);
-      prm.enter_subsection("bond-based");
-      prm.set("Young's modulus", "1");
-      prm.set("Poisson's ratio", "0.25");
-      prm.leave_subsection();
-      const auto model = Models::ModelRegistry<dim>::create("bond-based", prm);
       TrilinosWrappers::SparseMatrix a_fine, a_coarse;
-      using LocalElasticity = Operators::LocalElasticityOperator<dim>;
       LocalElasticity::assemble(nodes, lattice, *model, constraints, a_fine);
       LocalElasticity::assemble(nodes,
                                 lattice,
@@ -229,10 +359,16 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  check<2>(9, false);
-  check<2>(10, false);
-  check<2>(10, true);
-  check<3>(7, false);
-  check<3>(8, true);
+  check<2>(9, Constraints::none);
+  check<2>(10, Constraints::none);
+  check<2>(10, Constraints::dirichlet);
+  check<2>(10, Constraints::thin_clamp);
+  check<2>(10, Constraints::componentwise);
+  check<2>(10, Constraints::held);
+  check<3>(7, Constraints::none);
+  check<3>(8, Constraints::dirichlet);
+  check<3>(8, Constraints::thin_clamp);
+  check<3>(8, Constraints::componentwise);
+  check<3>(8, Constraints::held);
   return 0;
 }

@@ -159,10 +159,12 @@ namespace PeriDEAL
        * dim (the FE_DGQ(0)^dim numbering: a node's dim DoFs are
        * consecutive from a multiple of dim): the owned nodes owned, every
        * other node of the set a ghost. Its import and ghost targets are
-       * the processes this one exchanges node values with. Collective.
+       * the processes this one exchanges node values with. Built on the
+       * first call after reinit() (collective then) and kept: fracture runs
+       * exchange per-node masks at every load step.
        */
       std::shared_ptr<const Utilities::MPI::Partitioner>
-      make_node_partitioner() const;
+      node_partitioner() const;
 
       /// The communicator of the mesh.
       MPI_Comm
@@ -176,6 +178,9 @@ namespace PeriDEAL
       IndexSet               relevant;
       double                 perturbation      = 0;
       std::uint64_t          perturbation_seed = 1;
+      /// node_partitioner(), once built.
+      mutable std::shared_ptr<const Utilities::MPI::Partitioner>
+        node_partitioner_cache;
     };
   } // namespace Discretization
 } // namespace PeriDEAL

@@ -11,6 +11,7 @@
 #include <perideal/discretization/lattice.h>
 #include <perideal/discretization/node_set.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -51,6 +52,21 @@ namespace PeriDEAL
 
 
     /**
+     * The constrained components of every node of @p nodes (owned and
+     * off-process) as their owner's @p constraints have them: bit p set
+     * when component p is constrained there. An owned node's constraints
+     * can be known to its owner only (a node held where its bonds all
+     * broke), so a process that reads another's flags from its own
+     * AffineConstraints object can disagree with the owner; these masks
+     * agree on every process. Collective.
+     */
+    template <int dim>
+    std::vector<std::uint8_t>
+    owner_constraint_masks(const Discretization::NodeSet<dim> &nodes,
+                           const AffineConstraints<double>    &constraints);
+
+
+    /**
      * Every s-th node of a uniform lattice in each direction (the nodes
      * whose integer lattice coordinates are all multiples of the stride s;
      * the lattice origin is global, so every process picks the same ones),
@@ -71,6 +87,14 @@ namespace PeriDEAL
      * P^T and P are exact transposes and a preconditioner
      * \f$P A_c^{-1} P^T\f$ stays symmetric.
      *
+     * Prescribed coarse DoFs: a coarse DoF is prescribed where its node's
+     * PD DoF is, and also where a boundary-prescribed PD DoF in its support
+     * (a node it interpolates to) has no prescribed corner: a clamp on one
+     * layer at an odd lattice coordinate holds no coarse node, and without
+     * this rule the coarse matrix would keep the rigid motions and be
+     * singular. The flags of every process come from the owners
+     * (owner_constraint_masks()), so P and P^T agree on every process.
+     *
      * Off-process nodes needed: the corners of an owned node's coarse
      * cube lie within s - 1 lattice steps of it in each direction, and the
      * dual cubes of an owned coarse node (its row of the coarse matrix)
@@ -87,14 +111,19 @@ namespace PeriDEAL
        * Pick the coarse nodes of @p lattice (uniform), number their DoFs
        * (node by node, components consecutive, in the order of the owned
        * nodes; processes in rank order) and compute the interpolation
-       * weights of the owned nodes. @p constraints (the PD DoFs, owned and
-       * off-process) decide which DoFs take no part. Collective.
+       * weights of the owned nodes. @p constraints (the PD DoFs, each
+       * process's own view: only the owner's counts) decide which DoFs take
+       * no part. @p boundary_constraints, a subset of @p constraints, are
+       * those the coarse grid must represent (the boundary conditions;
+       * not the nodes held where their bonds broke); nullptr: all of
+       * @p constraints. Collective.
        */
       void
       reinit(const Discretization::NodeSet<dim> &nodes,
              const Discretization::Lattice<dim> &lattice,
              const AffineConstraints<double>    &constraints,
-             const unsigned int                  stride);
+             const unsigned int                  stride,
+             const AffineConstraints<double> *boundary_constraints = nullptr);
 
       /// The stride s.
       unsigned int
@@ -110,6 +139,11 @@ namespace PeriDEAL
       /// two lattice steps of an owned node).
       types::global_dof_index
       dof(const unsigned int i, const unsigned int component) const;
+
+      /// Whether component @p component of coarse node @p i of the node set
+      /// is prescribed on the coarse grid (the same on every process).
+      bool
+      is_prescribed(const unsigned int i, const unsigned int component) const;
 
       /// The coarse DoFs owned here.
       const IndexSet &
@@ -142,7 +176,10 @@ namespace PeriDEAL
       unsigned int s = 1;
       /// Per node of the node set: its coarse node number, or
       /// numbers::invalid_dof_index.
-      std::vector<types::global_dof_index>               coarse_number;
+      std::vector<types::global_dof_index> coarse_number;
+      /// Per node of the node set: the prescribed components of its coarse
+      /// DoFs (bit p for component p; coarse nodes only).
+      std::vector<std::uint8_t>                          coarse_mask;
       types::global_dof_index                            n_global = 0;
       IndexSet                                           owned;
       std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;

@@ -50,11 +50,13 @@ namespace PeriDEAL
       /**
        * Assemble into @p matrix (rows: the owned DoFs of @p nodes). The
        * lattice must be uniform and the node set must hold the off-process
-       * nodes next to owned ones. With @p coarse, on its coarse nodes
-       * instead: dual cubes of side s h between them, rows and columns its
-       * DoFs, a coarse DoF prescribed where the PD DoF of its node is; a
-       * coarse cube is cut (@p broken_masks) when one of the cubes of side
-       * h it holds is.
+       * nodes next to owned ones. A DoF is prescribed (its row and column
+       * the identity's) where its owner's @p constraints constrain it. With
+       * @p coarse, on its coarse nodes instead: dual cubes of side s h
+       * between them (only where every lattice point inside is a node),
+       * rows and columns its DoFs, prescribed where
+       * CoarseLattice::is_prescribed() says; a coarse cube is cut
+       * (@p broken_masks) when one of the cubes of side h it holds is.
        */
       static void
       assemble(const Discretization::NodeSet<dim> &nodes,
