@@ -228,13 +228,17 @@ namespace PeriDEAL
             Operators::LocalElasticityOperator<dim>::n_cut_cubes(context.nodes,
                                                                  lattice,
                                                                  broken_masks);
+          // Collective on every process, before any test that decides.
+          const bool holds_changed =
+            Utilities::MPI::logical_or(held_dofs != held_dofs_built,
+                                       context.communicator);
           if (preconditioner_ready && n_cut <= cut_cubes_built * 11 / 10 &&
-              n_holds == holds_built)
+              !holds_changed)
             return;
         }
       preconditioner_ready = true;
       cut_cubes_built      = n_cut;
-      holds_built          = n_holds;
+      held_dofs_built      = held_dofs;
       // On a coarser lattice ('local elasticity/Coarsening'): its own
       // DoFs, reached through the interpolation.
       const unsigned int coarsening =

@@ -84,12 +84,12 @@ namespace PeriDEAL
           held.add_line(line.index);
           held.set_inhomogeneity(line.index, line.inhomogeneity);
         }
-      const bool  has_last     = last_displacement.size() > 0;
-      std::size_t n_holds_here = 0;
-      const auto  hold         = [&](const types::global_dof_index dof) {
+      const bool has_last = last_displacement.size() > 0;
+      held_dofs.clear();
+      const auto hold = [&](const types::global_dof_index dof) {
         if (held.is_constrained(dof))
           return false;
-        ++n_holds_here;
+        held_dofs.push_back(dof);
         held.add_line(dof);
         held.set_inhomogeneity(dof, has_last ? last_displacement[dof] : 0.);
         return true;
@@ -120,7 +120,6 @@ namespace PeriDEAL
       held.close();
       boundary_constraints.copy_from(constraints);
       constraints.copy_from(held);
-      n_holds     = Utilities::MPI::sum(n_holds_here, context.communicator);
       n_isolated  = Utilities::MPI::sum(n_isolated, context.communicator);
       n_held_dofs = Utilities::MPI::sum(n_held_dofs, context.communicator);
     }

@@ -247,6 +247,9 @@ namespace PeriDEAL
       std::sort(indices.begin(), indices.end());
       relevant.add_indices(indices.begin(), indices.end());
       relevant.compress();
+      // Built here, where every process is, so that node_partitioner() is
+      // a plain getter that no process can reach alone for a collective.
+      node_partitioner();
     }
 
 

@@ -160,7 +160,9 @@ namespace PeriDEAL
           }
       };
       const auto owned_coarse_mask = [&](const unsigned int c) {
-        unsigned int       mask      = fine_mask[c];
+        // A hold (a node whose bonds all broke) prescribes its own fine
+        // DoF only: its coarse DoF stays free for the nodes around it.
+        unsigned int       mask      = boundary_mask[c];
         const auto        &x         = lattice.coordinates(c);
         const unsigned int width     = 2 * s - 1,
                            n_support = Utilities::pow(width, dim);
@@ -178,7 +180,7 @@ namespace PeriDEAL
             unsigned int represented = 0;
             for_each_corner(lattice.coordinates(j),
                             [&](const int k, const double) {
-                              represented |= fine_mask[k];
+                              represented |= boundary_mask[k];
                             });
             mask |= unrepresented & ~represented;
           }
@@ -212,6 +214,7 @@ namespace PeriDEAL
             const double v = numbers_of_nodes(nodes[i].dofs[0] / dim);
             if (v >= 0)
               {
+                static_assert(dim <= 3, "the mask takes three bits");
                 const auto packed = static_cast<std::uint64_t>(v);
                 coarse_number[i] =
                   static_cast<types::global_dof_index>(packed / 8);

@@ -24,11 +24,11 @@
 //   without that rule it is singular, t . A_2h t = 0 to round-off);
 // - constraints that only the owner knows (nodes held where their bonds
 //   broke: each process constrains its owned nodes of the plane x = 2
-//   only, not represented on the coarse grid): every process, for its
-//   owned and off-process coarse nodes, flags exactly those of that plane,
-//   and P^T leaves them zero (on two processes the off-process flags come
-//   from the owner; read from a process's own constraints they would be
-//   free there and the neighbours' residuals would reach them).
+//   only): not boundary conditions, so no coarse DoF is prescribed on any
+//   process; the local matrix on every node is symmetric (y . A x = x . A y
+//   for arbitrary x, y): on two processes, with off-process nodes of the
+//   plane in the node set (printed), its columns of held off-process DoFs
+//   must go as the owner's rows do, which needs the owner's flags.
 // On 1 and 2 processes the same output.
 // Kind of test: closed forms and algebraic identities, 1 and 2 ranks.
 
@@ -198,9 +198,8 @@ check(const unsigned int n, const Constraints kind)
               return layer == int(n) - 2;
             case Constraints::componentwise:
               return (p == 0 && layer == 0) || (p == 1 && layer == int(n) - 2);
-            case Constraints::held:
-              return layer == 2;
-            default:
+            default: // held: not a boundary condition, none
+
               return false;
           }
       };
@@ -216,12 +215,14 @@ check(const unsigned int n, const Constraints kind)
       wrong        = Utilities::MPI::sum(wrong, comm);
       n_prescribed = Utilities::MPI::sum(n_prescribed, comm);
       // One layer of coarse nodes, all components but in the
-      // component-wise case (one each of two layers).
+      // component-wise case (one each of two layers); none for holds.
       const unsigned int per_layer = std::pow((n + 1) / 2, dim - 1);
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         std::cout << "  prescribed coarse DoFs: " << n_prescribed
                   << " (expected "
-                  << per_layer * (kind == Constraints::componentwise ? 2 : dim)
+                  << per_layer * (kind == Constraints::componentwise ? 2 :
+                                  kind == Constraints::held          ? 0 :
+                                                                       dim)
                   << "), where the rule puts them on every process: "
                   << (wrong == 0 ? "yes" : "NO") << std::endl;
     }
@@ -325,6 +326,35 @@ check(const unsigned int n, const Constraints kind)
         std::cout << "  the coarse matrix holds the translations "
                      "(t.At / t.Dt > 1e-6): "
                   << (smallest > 1e-6 ? "yes" : "NO") << std::endl;
+    }
+
+  // Owner-only holds: the local matrix on every node is symmetric
+  // (y . A x = x . A y), its columns of held off-process DoFs gone as the
+  // owner's rows are (a process that took them from its own constraints
+  // would keep them).
+  if (kind == Constraints::held)
+    {
+      unsigned int off_process = 0;
+      for (unsigned int i = nodes.n_owned(); i < nodes.size(); ++i)
+        off_process += int(nodes[i].location[0]) == 2;
+      off_process = Utilities::MPI::sum(off_process, comm);
+      TrilinosWrappers::SparseMatrix a_fine;
+      LocalElasticity::assemble(nodes, lattice, *model, constraints, a_fine);
+      VectorType x(owned, comm), y(owned, comm), ax(owned, comm),
+        ay(owned, comm);
+      for (unsigned int i = 0; i < nodes.n_owned(); ++i)
+        for (unsigned int p = 0; p < dim; ++p)
+          {
+            x[nodes[i].dofs[p]] = pseudo_random(nodes[i].location, p);
+            y[nodes[i].dofs[p]] = pseudo_random(nodes[i].location, p + 5);
+          }
+      a_fine.vmult(ax, x);
+      a_fine.vmult(ay, y);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        std::cout << "  off-process nodes of the plane: "
+                  << (off_process > 0 ? "some" : "none") << std::endl;
+      report("the local matrix with owner-only holds is symmetric",
+             std::abs(y * ax - x * ay) / (ax.l2_norm() * y.l2_norm()));
     }
 
   // The coarse matrix is the Galerkin product of the fine one.

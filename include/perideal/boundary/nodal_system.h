@@ -191,11 +191,11 @@ namespace PeriDEAL
       /// processes together), to decide when the cracks have grown enough
       /// to assemble it again.
       std::size_t cut_cubes_built = 0;
-      /// Bond failure: the DoFs held by hold_isolated_nodes() (all
-      /// processes; the set only grows, so its size tells whether it
-      /// changed), now and when the local matrix was assembled, which holds
-      /// them too.
-      std::size_t n_holds = 0, holds_built = 0;
+      /// Bond failure: the owned DoFs held by hold_isolated_nodes(), in
+      /// the order found, now and when the local matrix was assembled
+      /// (which holds them too; assembled again when they differ on any
+      /// process).
+      std::vector<types::global_dof_index> held_dofs, held_dofs_built;
       /// Bond failure: the constraints of the boundary conditions alone
       /// (those the coarse lattice represents; the holds not).
       AffineConstraints<double> boundary_constraints;

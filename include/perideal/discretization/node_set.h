@@ -159,9 +159,9 @@ namespace PeriDEAL
        * dim (the FE_DGQ(0)^dim numbering: a node's dim DoFs are
        * consecutive from a multiple of dim): the owned nodes owned, every
        * other node of the set a ghost. Its import and ghost targets are
-       * the processes this one exchanges node values with. Built on the
-       * first call after reinit() (collective then) and kept: fracture runs
-       * exchange per-node masks at every load step.
+       * the processes this one exchanges node values with. Built once by
+       * reinit() (collectively) and kept: fracture runs exchange per-node
+       * masks at every load step.
        */
       std::shared_ptr<const Utilities::MPI::Partitioner>
       node_partitioner() const;

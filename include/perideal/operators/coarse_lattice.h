@@ -87,8 +87,11 @@ namespace PeriDEAL
      * P^T and P are exact transposes and a preconditioner
      * \f$P A_c^{-1} P^T\f$ stays symmetric.
      *
-     * Prescribed coarse DoFs: a coarse DoF is prescribed where its node's
-     * PD DoF is, and also where a boundary-prescribed PD DoF in its support
+     * Prescribed coarse DoFs: a coarse DoF is prescribed where a boundary
+     * condition prescribes its node's PD DoF (a node held where its bonds
+     * all broke leaves its coarse DoF free: P skips the held fine DoF
+     * itself, and the coarse function still serves the nodes around it),
+     * and also where a boundary-prescribed PD DoF in its support
      * (a node it interpolates to) has no prescribed corner: a clamp on one
      * layer at an odd lattice coordinate holds no coarse node, and without
      * this rule the coarse matrix would keep the rigid motions and be
