@@ -119,20 +119,21 @@ namespace PeriDEAL
       }
       n_global = Utilities::MPI::sum(n_owned_coarse, comm);
 
-      // The constrained components of every node of the set, as the
-      // owners have them.
-      const std::vector<std::uint8_t> fine_mask =
-        owner_constraint_masks(nodes, constraints);
+      // The components that boundary conditions prescribe, for every node
+      // of the set as its owner has them (the rule below reads
+      // off-process nodes; the owned nodes' own flags come from
+      // @p constraints directly).
       const std::vector<std::uint8_t> boundary_mask =
-        boundary_constraints != nullptr ?
-          owner_constraint_masks(nodes, *boundary_constraints) :
-          fine_mask;
+        owner_constraint_masks(nodes,
+                               boundary_constraints != nullptr ?
+                                 *boundary_constraints :
+                                 constraints);
 
-      // The prescribed components of an owned coarse node c: those of its
-      // own PD DoFs, and each component p of a node j in its support
-      // (within s - 1 steps) that a boundary condition prescribes while
-      // none of j's coarse corners has p prescribed. The corners of j lie
-      // within 2 (s - 1) steps of c: in the node set.
+      // The prescribed components of an owned coarse node c: those a
+      // boundary condition prescribes at its own node, and each component p of
+      // a node j in its support (within s - 1 steps) that a boundary condition
+      // prescribes while none of j's coarse corners has p prescribed. The
+      // corners of j lie within 2 (s - 1) steps of c: in the node set.
       constexpr unsigned int n_corners = 1u << dim;
       const auto for_each_corner = [&](const std::array<std::int64_t, dim> &x,
                                        const auto                          &f) {
@@ -299,7 +300,7 @@ namespace PeriDEAL
           fine_dof[i] = nodes[i].dofs[0];
           for (unsigned int p = 0; p < dim; ++p)
             fine_constrained[std::size_t(i) * dim + p] =
-              (fine_mask[i] >> p) & 1;
+              constraints.is_constrained(nodes[i].dofs[p]);
         }
       for (unsigned int i = 0; i < nodes.size(); ++i)
         if (coarse_number[i] != numbers::invalid_dof_index)
